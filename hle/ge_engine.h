@@ -1,0 +1,146 @@
+// The GE machine: executes display lists (manual §20, §11.1; ge-reference.md §4) against a
+// GeState and guest Memory, and hands draws, transfers and syncs to a Renderer.
+//
+// One list executes at a time; queueing several lists, list IDs and sync are the sceGe layer's
+// job (hle/sce_ge.h). The engine never blocks and never starts threads: run() executes until the
+// list ends, reaches its stall address, pauses, errors, or the command budget is used up.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "hle/ge_state.h"
+#include "hle/memory.h"
+#include "hle/renderer.h"
+
+namespace ge {
+
+enum class GeError {
+    None,
+    BadListAddress,   // the PC left valid memory
+    BadJumpTarget,    // JUMP/BJUMP/CALL/signal jump to an invalid address
+    CallDepth,        // CALL beyond the hardware's two levels
+    SignalStack,      // signal CALL beyond the software stack / signal RET with an empty stack
+};
+const char* geErrorName(GeError e);
+
+enum class RunStatus {
+    Idle,             // no list started
+    Completed,        // FINISH + END: list done
+    Ended,            // END without SIGNAL/FINISH: the GE stops (uOFW behaviour; ge-reference §4.3)
+    Stalled,          // PC reached the stall address; setStall() resumes
+    Paused,           // a SIGNAL pause (HANDLER_PAUSE at FINISH, or requestPause()); resume() continues
+    Budget,           // command budget exhausted; run() again continues
+    Error,            // see lastError()
+};
+const char* runStatusName(RunStatus s);
+
+// Interrupts and notifications for the host (manual §21). All callbacks run on the caller's thread
+// from inside run().
+class GeListener {
+public:
+    virtual ~GeListener() = default;
+    // SIGNAL + END pair with a handler behaviour (0x01 suspend, 0x02 continue, 0x03 pause
+    // delivered at the following FINISH). `pc` is the address after the END.
+    virtual void onSignal(u32 /*behaviour*/, u32 /*signalArg*/, u32 /*endArg*/, u32 /*pc*/) {}
+    virtual void onFinish(u32 /*finishArg*/, u32 /*pc*/) {}
+    virtual void onEnd(u32 /*pc*/) {}
+    virtual void onError(GeError, u32 /*pc*/, const std::string& /*message*/) {}
+    // The GE has read the list up to (not including) `pc`.
+    virtual void onProgress(u32 /*pc*/) {}
+};
+
+// Execution registers of the running list (ge-reference.md §4.1).
+struct ListRegs {
+    u32 pc = 0;
+    u32 stall = 0;        // 0: no stall address
+    u32 callStack[2][2] = {};  // (return PC, OFFSET) for CALL depth 1 and 2
+    u32 callDepth = 0;
+    bool bflg = true;     // result of the last BBOX (1 = inside)
+    // Software stack for SIGNAL CALL/RET (PC, OFFSET, BASE), like the sceGe module's.
+    struct SigFrame { u32 pc, offset, base; };
+    std::vector<SigFrame> signalStack;
+    u32 signalStackMax = 32;
+    // Marks set by SIGNAL behaviours, acted on at the next FINISH + END.
+    bool pauseAtFinish = false, syncAtFinish = false;
+    u32 pauseSignalArg = 0, pauseEndArg = 0;
+    u32 lastOp = 0;       // previous command word's opcode (SIGNAL/FINISH before END)
+    u32 lastWord = 0;
+};
+
+struct GeStats {
+    u64 commands = 0, prims = 0, patches = 0, immediates = 0, vertices = 0, bboxes = 0;
+    u64 transfers = 0, clutLoads = 0, signals = 0, finishes = 0, unknownCommands = 0;
+    u64 stateChanges = 0;  // register words that changed value
+};
+
+class GeEngine {
+public:
+    explicit GeEngine(Memory& mem, Renderer* renderer = nullptr);
+
+    void setRenderer(Renderer* r);
+    Renderer* renderer() const { return renderer_; }
+    void setListener(GeListener* l) { listener_ = l; }
+
+    GeState& state() { return state_; }
+    const GeState& state() const { return state_; }
+    Memory& memory() { return mem_; }
+    ListRegs& list() { return list_; }
+    const ListRegs& list() const { return list_; }
+    const GeStats& stats() const { return stats_; }
+
+    // Starts executing a list at `pc` (masked to 28 bits) with a stall address (0 = none).
+    // OFFSET starts at 0 and the call stack empty; BASE and all other state is kept.
+    void startList(u32 pc, u32 stall);
+    void setStall(u32 stall) { list_.stall = stall ? Memory::normalize(stall) : 0; }
+    RunStatus run(u64 maxCommands = ~u64(0));
+    RunStatus status() const { return status_; }
+    // Ask the running list to pause after the current command (sceGeBreak); resume() clears it.
+    void requestPause() { pauseRequested_ = true; }
+    void resume();
+
+    // Executes one command word as if read from the list at the current PC (PC already advanced).
+    void execute(u32 word);
+    // Restores a 512-word context and marks all state dirty.
+    bool loadContext(const u32 ctx[512]);
+
+    GeError lastError() const { return lastError_; }
+    const std::string& lastErrorMessage() const { return lastErrorMsg_; }
+    u32 takeDirty() { u32 d = dirty_; dirty_ = 0; return d; }
+    void markDirty(u32 groups) { dirty_ |= groups; }
+
+    // Address formation of §4.2: (BASE-high | arg) + OFFSET, masked to 28 bits.
+    u32 formAddress(u32 arg24) const;
+
+private:
+    void fail(GeError e, const std::string& msg);
+    void doPrim(u32 arg);
+    void doPatch(u32 word);
+    void doBBox(u32 arg);
+    void doTransfer(u32 arg);
+    void doClutLoad(u32 arg);
+    void doImmediate(u32 arg);
+    void doEnd(u32 arg);
+    bool jumpTo(u32 target);
+    void matrixData(u8 op, u32 arg);
+
+    Memory& mem_;
+    Renderer* renderer_ = nullptr;
+    NullRenderer nullRenderer_;
+    GeListener* listener_ = nullptr;
+    GeState state_;
+    ListRegs list_;
+    GeStats stats_;
+    RunStatus status_ = RunStatus::Idle;
+    GeError lastError_ = GeError::None;
+    std::string lastErrorMsg_;
+    u32 dirty_ = DIRTY_ALL;
+    bool pauseRequested_ = false;
+    bool stopRequested_ = false;
+    RunStatus stopStatus_ = RunStatus::Idle;
+    GePrimType lastPrim_ = GE_PRIM_POINTS;
+    std::vector<ImmVertex> immVerts_;
+    u32 immFlags_ = 0;
+    GePrimType immPrim_ = GE_PRIM_POINTS;
+};
+
+}  // namespace ge

@@ -1,0 +1,165 @@
+#include "hle/memory.h"
+
+#include <algorithm>
+
+namespace ge {
+
+Memory::Memory(u32 ramSize)
+    : ownedRam_(new u8[ramSize]()), ownedVram_(new u8[kVramSize]()), ram_(ownedRam_.get()),
+      vram_(ownedVram_.get()), ramSize_(ramSize) {
+    rebuildMirrorTables();
+}
+
+Memory::Memory(u8* hostRam, u32 ramSize, u8* hostVram) : ram_(hostRam), vram_(hostVram), ramSize_(ramSize) {
+    if (!vram_) {
+        ownedVram_.reset(new u8[kVramSize]());
+        vram_ = ownedVram_.get();
+    }
+    if (!ram_) ramSize_ = 0;
+    rebuildMirrorTables();
+}
+
+const u8* Memory::ptr(u32 addr, u32 size) const {
+    u32 a = normalize(addr);
+    u64 end = u64(a) + size;
+    if (a >= kVramBase && a < kVramMirrorsEnd) {
+        u32 off = (a - kVramBase) & (kVramSize - 1);
+        // The range must stay inside one 2 MiB mirror.
+        if (u64(off) + size > kVramSize) return nullptr;
+        return vram_ + off;
+    }
+    if (a >= kRamBase && ram_) {
+        if (end > u64(kRamBase) + ramSize_) return nullptr;
+        return ram_ + (a - kRamBase);
+    }
+    if (a >= kScratchBase && end <= u64(kScratchBase) + kScratchSize) return scratch_ + (a - kScratchBase);
+    return nullptr;
+}
+
+u8* Memory::ptr(u32 addr, u32 size) { return const_cast<u8*>(static_cast<const Memory*>(this)->ptr(addr, size)); }
+
+u32 Memory::validSize(u32 addr, u32 maxSize) const {
+    u32 a = normalize(addr);
+    u64 avail = 0;
+    if (a >= kVramBase && a < kVramMirrorsEnd)
+        avail = kVramSize - ((a - kVramBase) & (kVramSize - 1));
+    else if (a >= kRamBase && ram_ && a - kRamBase < ramSize_)
+        avail = u64(kRamBase) + ramSize_ - a;
+    else if (a >= kScratchBase && a < kScratchBase + kScratchSize)
+        avail = kScratchBase + kScratchSize - a;
+    return u32(std::min<u64>(avail, maxSize));
+}
+
+u8 Memory::read8(u32 addr) const {
+    const u8* p = ptr(addr, 1);
+    if (!p) return noteBadAccess(addr), 0;
+    return *p;
+}
+u16 Memory::read16(u32 addr) const {
+    const u8* p = ptr(addr, 2);
+    if (!p) return noteBadAccess(addr), 0;
+    return readLE16(p);
+}
+u32 Memory::read32(u32 addr) const {
+    const u8* p = ptr(addr, 4);
+    if (!p) return noteBadAccess(addr), 0;
+    return readLE32(p);
+}
+void Memory::write8(u32 addr, u8 v) {
+    if (u8* p = ptr(addr, 1)) *p = v;
+    else noteBadAccess(addr);
+}
+void Memory::write16(u32 addr, u16 v) {
+    if (u8* p = ptr(addr, 2)) writeLE16(p, v);
+    else noteBadAccess(addr);
+}
+void Memory::write32(u32 addr, u32 v) {
+    if (u8* p = ptr(addr, 4)) writeLE32(p, v);
+    else noteBadAccess(addr);
+}
+bool Memory::read(u32 addr, void* dst, u32 size) const {
+    if (size == 0) return true;
+    const u8* p = ptr(addr, size);
+    if (!p) return noteBadAccess(addr), false;
+    std::memmove(dst, p, size);
+    return true;
+}
+bool Memory::write(u32 addr, const void* src, u32 size) {
+    if (size == 0) return true;
+    u8* p = ptr(addr, size);
+    if (!p) return noteBadAccess(addr), false;
+    std::memmove(p, src, size);
+    return true;
+}
+bool Memory::fill(u32 addr, u8 value, u32 size) {
+    if (size == 0) return true;
+    u8* p = ptr(addr, size);
+    if (!p) return noteBadAccess(addr), false;
+    std::memset(p, value, size);
+    return true;
+}
+
+bool Memory::setEdramTranslation(u32 value) {
+    if (value != 0 && value != 0x200 && value != 0x400 && value != 0x800 && value != 0x1000) return false;
+    edramTrans_ = value;
+    rebuildMirrorTables();
+    return true;
+}
+
+// Mirror permutations measured on hardware (ge-reference.md §7.3, pat gpu/ge/edramswizzle).
+u32 Memory::linearToMirror(u32 i, int mirror) const {
+    const u32 T = edramTrans_;
+    switch (mirror & 3) {
+    case 0:
+    case 2: return i;
+    case 1: return T == 0 ? (i ^ 0x600) : (i ^ (8 * T | 0x40));
+    default: {
+        if (T == 0) {
+            u32 b = (i >> 9) & 3;
+            return (b == 0 || b == 3) ? (i ^ 0x600) : i;
+        }
+        int k = 0;
+        while ((1u << k) < T) ++k;
+        u32 j = i ^ (8 * T);
+        // Rebuild bits k-1..5: bit 5 = NOT bit 6 of i; bits k-2..6 = bits k-1..7 of i; bit k-1 = bit 5 of i.
+        u32 fieldMask = ((1u << k) - 1) & ~0x1Fu;
+        j &= ~fieldMask;
+        j |= ((~i >> 6) & 1) << 5;
+        for (int b = 6; b <= k - 2; ++b) j |= ((i >> (b + 1)) & 1) << b;
+        j |= ((i >> 5) & 1) << (k - 1);
+        return j;
+    }
+    }
+}
+
+void Memory::rebuildMirrorTables() {
+    m3ToLinear_.assign(0x10000, 0);
+    for (u32 i = 0; i < 0x10000; ++i) m3ToLinear_[linearToMirror(i, 3) & 0xFFFF] = u16(i);
+}
+
+u32 Memory::mirrorToLinear(u32 off, int mirror) const {
+    switch (mirror & 3) {
+    case 0:
+    case 2: return off;
+    case 1: return linearToMirror(off, 1);  // XOR: its own inverse
+    default: return (off & ~0xFFFFu) | m3ToLinear_[off & 0xFFFF];
+    }
+}
+
+u8 Memory::readMirrored(u32 addr) const {
+    u32 a = normalize(addr);
+    if (a < kVramBase || a >= kVramMirrorsEnd) return read8(addr);
+    int mirror = int((a - kVramBase) >> 21);
+    u32 lin = mirrorToLinear((a - kVramBase) & (kVramSize - 1), mirror) & (kVramSize - 1);
+    return vram_[lin];
+}
+
+void Memory::writeMirrored(u32 addr, u8 v) {
+    u32 a = normalize(addr);
+    if (a < kVramBase || a >= kVramMirrorsEnd) return write8(addr, v);
+    int mirror = int((a - kVramBase) >> 21);
+    u32 lin = mirrorToLinear((a - kVramBase) & (kVramSize - 1), mirror) & (kVramSize - 1);
+    vram_[lin] = v;
+}
+
+}  // namespace ge
