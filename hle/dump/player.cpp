@@ -1,0 +1,363 @@
+#include "hle/dump/player.h"
+
+#include <cstdio>
+#include <map>
+#include <tuple>
+#include <vector>
+
+namespace ge::dump {
+
+namespace {
+
+bool isKick(u8 op) { return op == GE_CMD_PRIM || op == GE_CMD_BEZIER || op == GE_CMD_SPLINE; }
+
+constexpr u32 kListBase = 0x08000000;       // 1 MiB display-list buffer
+constexpr u32 kListEnd = 0x08100000;
+constexpr u32 kArenaBase = kListEnd;        // payloads from here to the end of RAM
+
+u32 cmd(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
+
+class Replayer {
+public:
+    Replayer(const Dump& d, GeEngine& eng, const ReplayOptions& opt, ReplayResult& res)
+        : d_(d), eng_(eng), mem_(eng.memory()), opt_(opt), res_(res) {}
+
+    bool play(std::string& err);
+
+private:
+    // Copies a payload into free guest RAM, 4- or 16-byte aligned; identical payloads share one
+    // copy. Returns 0 when it does not fit.
+    u32 place(const Record& r, u32 align);
+    void appendWords(const std::vector<u32>& words);
+    void runSoFar();
+    void hostWrite(u32 addr, const u8* data, u32 size);
+    void hostFill(u32 addr, u8 value, u32 size);
+    void queueBaseFor(u32 a) {
+        if ((a >> 24) != lastBase_) {
+            pending_.push_back(cmd(GE_CMD_BASE, (a >> 8) & 0xFF0000));
+            lastBase_ = a >> 24;
+        }
+    }
+    void warn(const std::string& w) {
+        if (res_.warning.empty()) res_.warning = w;
+    }
+
+    const Dump& d_;
+    GeEngine& eng_;
+    Memory& mem_;
+    const ReplayOptions& opt_;
+    ReplayResult& res_;
+
+    std::vector<u32> pending_;
+    u32 writePos_ = kListBase;
+    u32 arenaPos_ = kArenaBase;
+    std::map<std::tuple<u32, u32, u32>, u32> placed_;
+    u32 lastTex_[8] = {}, lastBufw_[8] = {};
+    u32 lastBase_ = ~0u;  // unknown
+    bool clutAddrPending_ = false;
+    u32 clutAddr_ = 0, clutFlags_ = 0;
+    u32 memcpyDest_ = 0;
+    u64 kicks_ = 0;
+    bool stopped_ = false;  // --replay-end reached
+};
+
+u32 Replayer::place(const Record& r, u32 align) {
+    const u8* p = d_.payload(r);
+    if (!p) return 0;
+    auto key = std::make_tuple(r.ptr, r.size, align);
+    if (auto it = placed_.find(key); it != placed_.end()) return it->second;
+    const u64 ramEnd = u64(Memory::kRamBase) + mem_.ramSize();
+    u32 a = (arenaPos_ + align - 1) & ~(align - 1);
+    if (u64(a) + r.size > ramEnd) {
+        // Wrap around: everything placed before has been consumed by the list already run
+        // (each REGISTERS block runs at once), except the pending block's own data.
+        placed_.clear();
+        a = kArenaBase;
+        if (u64(a) + r.size > ramEnd) return 0;
+    }
+    mem_.write(a, p, r.size);
+    eng_.renderer()->memoryWritten(a, r.size);
+    arenaPos_ = a + r.size;
+    placed_[key] = a;
+    return a;
+}
+
+void Replayer::appendWords(const std::vector<u32>& words) {
+    size_t i = 0;
+    while (i < words.size()) {
+        // Room for a chunk plus the BASE + JUMP that wrap the buffer.
+        u32 room = (kListEnd - writePos_) / 4;
+        if (room <= 2) {
+            mem_.write32(writePos_, cmd(GE_CMD_BASE, (kListBase >> 8) & 0xFF0000));
+            mem_.write32(writePos_ + 4, cmd(GE_CMD_JUMP, kListBase & 0xFFFFFF));
+            writePos_ = kListBase;
+            lastBase_ = kListBase >> 24;
+            // Let the GE follow the jump before the start of the buffer is overwritten.
+            eng_.setStall(writePos_);
+            eng_.run(16);
+            continue;
+        }
+        size_t n = std::min<size_t>(words.size() - i, room - 2);
+        for (size_t k = 0; k < n; ++k) mem_.write32(writePos_ + u32(4 * k), words[i + k]);
+        writePos_ += u32(4 * n);
+        i += n;
+        if (i < words.size()) runSoFar();
+    }
+}
+
+void Replayer::runSoFar() {
+    eng_.setStall(writePos_);
+    // Blocks never branch backwards in a sound dump; a generous budget turns a corrupt loop into
+    // an error instead of a hang.
+    RunStatus s = eng_.run(u64(kListEnd - kListBase) / 4 * 4 + 4096);
+    if (s == RunStatus::Stalled) return;
+    ++res_.listErrors;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "display list stopped (%s%s%s) before the end of the recorded commands",
+                  runStatusName(s), s == RunStatus::Error ? ": " : "",
+                  s == RunStatus::Error ? eng_.lastErrorMessage().c_str() : "");
+    warn(buf);
+    // Restart the list where the player writes next, keeping all state.
+    eng_.startList(writePos_, writePos_);
+}
+
+void Replayer::hostWrite(u32 addr, const u8* data, u32 size) {
+    u32 n = mem_.validSize(addr, size);
+    if (n < size) warn("a VRAM copy in the dump runs past the end of memory");
+    if (!n) return;
+    eng_.renderer()->syncMemoryForRead(addr, n);
+    mem_.write(addr, data, n);
+    eng_.renderer()->memoryWritten(addr, n);
+}
+
+void Replayer::hostFill(u32 addr, u8 value, u32 size) {
+    u32 n = mem_.validSize(addr, size);
+    if (!n) return;
+    eng_.renderer()->syncMemoryForRead(addr, n);
+    mem_.fill(addr, value, n);
+    eng_.renderer()->memoryWritten(addr, n);
+}
+
+bool Replayer::play(std::string& err) {
+    if (d_.records.empty() || d_.records[0].type != INIT) {
+        err = "dump does not start with an INIT record";
+        return false;
+    }
+    // §6.1: the list starts with one NOP, stalled at its end.
+    mem_.write32(writePos_, 0);
+    writePos_ += 4;
+    eng_.startList(kListBase, writePos_);
+    eng_.run(16);
+
+    const Record* prev = nullptr;
+    for (size_t ri = 0; ri < d_.records.size() && !stopped_; ++ri) {
+        const Record& r = d_.records[ri];
+        ++res_.records;
+        const u8* p = d_.payload(r);
+        if (!p && r.size) {
+            warn(std::string("record ") + recordTypeName(r.type) + " points outside the push buffer");
+            prev = &r;
+            continue;
+        }
+        const int texLevel = textureLevelOf(r.type), fbLevel = framebufLevelOf(r.type);
+        if (texLevel >= 0) {
+            u32 a = place(r, 16);
+            if (a && a != lastTex_[texLevel]) {
+                pending_.push_back(cmd(GE_CMD_TBW0 + texLevel, ((a >> 8) & 0xFF0000) | lastBufw_[texLevel]));
+                pending_.push_back(cmd(GE_CMD_TBP0 + texLevel, a & 0xFFFFFF));
+                lastTex_[texLevel] = a;
+            }
+        } else if (fbLevel >= 0) {
+            const u32 v = d_.payloadWord(r, 0), bufw = d_.payloadWord(r, 1), flags = d_.payloadWord(r, 2);
+            if (v != lastTex_[fbLevel] || bufw != lastBufw_[fbLevel]) {
+                pending_.push_back(cmd(GE_CMD_TBW0 + fbLevel, ((v >> 8) & 0xFF0000) | (bufw & 0xFFFF)));
+                pending_.push_back(cmd(GE_CMD_TBP0 + fbLevel, v & 0xFFFFFF));
+                lastTex_[fbLevel] = v;
+                lastBufw_[fbLevel] = bufw;
+            }
+            // Flag bit 1 ("unchanged VRAM") is trustworthy from version 6 on (§3.3).
+            if (r.size > 16 && !(d_.version >= 6 && (flags & 2))) hostWrite(v, p + 16, r.size - 16);
+        } else {
+            switch (r.type) {
+            case INIT: {
+                u32 ctx[512] = {};
+                if (r.size < kInitBytes) warn("short INIT record");
+                std::memcpy(ctx, p, std::min<u32>(r.size, kInitBytes));
+                eng_.loadContext(ctx);
+                // The running list's OFFSET is its own, starting at 0 (§6.1).
+                eng_.state().offsetAddr = 0;
+                for (int i = 0; i < 8; ++i) lastTex_[i] = lastBufw_[i] = 0;
+                lastBase_ = ~0u;
+                break;
+            }
+            case REGISTERS: {
+                std::vector<u32> words;
+                words.swap(pending_);
+                const u32 n = r.size / 4;
+                words.reserve(words.size() + n);
+                for (u32 i = 0; i < n; ++i) {
+                    u32 w = readLE32(p + 4 * i);
+                    const u8 op = u8(w >> 24);
+                    if (op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) {
+                        w = 0;  // texture addresses come from the data records
+                    } else if (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) {
+                        const int lv = op - GE_CMD_TBW0;
+                        const u32 width = w & 0xFFFF;
+                        if (width == lastBufw_[lv]) w = 0;
+                        else w = cmd(op, ((lastTex_[lv] >> 8) & 0xFF0000) | width);
+                        lastBufw_[lv] = width;
+                    } else if (op == GE_CMD_SIGNAL || op == GE_CMD_BASE) {
+                        lastBase_ = ~0u;
+                    }
+                    words.push_back(w);
+                    if (isKick(op)) {
+                        ++kicks_;
+                        if (opt_.replayEnd && kicks_ >= opt_.replayEnd) {
+                            stopped_ = true;
+                            break;
+                        }
+                    }
+                }
+                appendWords(words);
+                runSoFar();
+                break;
+            }
+            case VERTICES:
+            case INDICES: {
+                u32 a = place(r, 4);
+                if (!a) {
+                    warn("vertex/index data does not fit in guest RAM");
+                    break;
+                }
+                queueBaseFor(a);
+                pending_.push_back(cmd(r.type == VERTICES ? GE_CMD_VADR : GE_CMD_IADR, a & 0xFFFFFF));
+                break;
+            }
+            case CLUTADDR:
+                clutAddrPending_ = true;
+                clutAddr_ = d_.payloadWord(r, 0);
+                clutFlags_ = d_.payloadWord(r, 1);
+                break;
+            case CLUT:
+                if (clutAddrPending_) {
+                    hostWrite(clutAddr_, p, r.size);
+                    clutAddrPending_ = false;
+                } else {
+                    if (prev && prev->type == INIT) {
+                        // The palette at recording start (newer v6 dumps): load it straight into
+                        // palette RAM, which matches the recording's state (§6.4).
+                        GeState& st = eng_.state();
+                        std::memcpy(st.clut, p, std::min<u32>(r.size, sizeof(st.clut)));
+                        eng_.markDirty(DIRTY_CLUT);
+                        eng_.renderer()->clutLoaded(st);
+                    }
+                    u32 a = place(r, 16);
+                    if (a) {
+                        pending_.push_back(cmd(GE_CMD_CBW, (a >> 8) & 0xFF0000));
+                        pending_.push_back(cmd(GE_CMD_CBP, a & 0xFFFFFF));
+                    }
+                }
+                break;
+            case TRANSFERSRC: {
+                u32 a = place(r, 16);
+                runSoFar();
+                if (a) {
+                    const u32 xbw1 = eng_.state().regs[GE_CMD_XBW1];
+                    pending_.push_back(cmd(GE_CMD_XBW1, (xbw1 & 0xFFFF) | ((a >> 8) & 0xFF0000)));
+                    pending_.push_back(cmd(GE_CMD_XBP1, a & 0xFFFFFF));
+                }
+                break;
+            }
+            case MEMSET: {
+                runSoFar();
+                const u32 dest = d_.payloadWord(r, 0), value = d_.payloadWord(r, 1), size = d_.payloadWord(r, 2);
+                if (Memory::isVram(dest)) hostFill(dest, u8(value), size);
+                break;
+            }
+            case MEMCPYDEST: memcpyDest_ = d_.payloadWord(r, 0); break;
+            case MEMCPYDATA:
+                runSoFar();
+                if (Memory::isVram(memcpyDest_)) hostWrite(memcpyDest_, p, r.size);
+                break;
+            case EDRAMTRANS:
+                runSoFar();
+                if (!mem_.setEdramTranslation(d_.payloadWord(r, 0))) warn("invalid eDRAM translation value");
+                break;
+            case DISPLAY:
+                runSoFar();
+                res_.hasDisplay = true;
+                res_.displayAddr = d_.payloadWord(r, 0);
+                res_.displayStride = d_.payloadWord(r, 1);
+                res_.displayFormat = d_.payloadWord(r, 2) & 0xFF;  // §3.2: mask the format
+                break;
+            default: {
+                char buf[64];
+                std::snprintf(buf, sizeof buf, "unknown record type 0x%02x (record %zu)", r.type, ri);
+                err = buf;
+                eng_.renderer()->flushToMemory();
+                return false;
+            }
+            }
+        }
+        prev = &r;
+    }
+    // §6.3: finish the list and wait for it.
+    std::vector<u32> tail;
+    tail.swap(pending_);
+    tail.push_back(cmd(GE_CMD_FINISH, 0));
+    tail.push_back(cmd(GE_CMD_END, 0));
+    appendWords(tail);
+    eng_.setStall(writePos_);
+    RunStatus s = eng_.run(u64(kListEnd - kListBase) / 4 * 4 + 4096);
+    if (s != RunStatus::Completed) {
+        ++res_.listErrors;
+        warn(std::string("final list ended as '") + runStatusName(s) + "'");
+    }
+    res_.draws = kicks_;
+    eng_.renderer()->flushToMemory();
+    return true;
+}
+
+}  // namespace
+
+DumpSummary summarize(const Dump& d) {
+    DumpSummary s;
+    for (const Record& r : d.records) {
+        if (r.type < 32) ++s.recordsByType[r.type];
+        if (!isKnownRecordType(r.type)) ++s.unknownRecords;
+        if (r.type != REGISTERS) continue;
+        const u8* p = d.payload(r);
+        if (!p) continue;
+        for (u32 i = 0; i < r.size / 4; ++i) {
+            const u8 op = p[4 * i + 3];
+            ++s.commands;
+            if (op == GE_CMD_PRIM) ++s.prims;
+            if (op == GE_CMD_BEZIER || op == GE_CMD_SPLINE) ++s.patches;
+            if (op == GE_CMD_XSTART) ++s.transfers;
+            if (op == GE_CMD_CLOAD) ++s.clutLoads;
+        }
+    }
+    s.draws = s.prims + s.patches;
+    return s;
+}
+
+void displayedFramebuffer(const ReplayResult& r, const GeState& st, u32& addr, u32& stride, u32& format) {
+    if (r.hasDisplay) {
+        addr = r.displayAddr;
+        stride = r.displayStride;
+        format = r.displayFormat & 3;
+    } else {
+        addr = st.framebufAddr();
+        stride = st.framebufStride();
+        format = st.framebufFormat();
+    }
+    if (stride == 0 || stride > 1024) stride = 512;
+}
+
+bool replayDump(const Dump& d, GeEngine& engine, const ReplayOptions& opt, ReplayResult& result, std::string& err) {
+    result = ReplayResult{};
+    Replayer r(d, engine, opt, result);
+    return r.play(err);
+}
+
+}  // namespace ge::dump

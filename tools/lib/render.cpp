@@ -1,0 +1,113 @@
+#include "tools/lib/render.h"
+
+#include <chrono>
+#include <filesystem>
+
+#if __has_include("softmodel/soft_renderer.h")
+#include "softmodel/soft_renderer.h"
+#define GE2GL_HAVE_SOFT 1
+#endif
+#if defined(GE2GL_HAVE_GL) && __has_include("translator/gl_renderer.h")
+#include "translator/gl_renderer.h"
+#define GE2GL_GL_READY 1
+#endif
+
+namespace ge::tools {
+
+std::unique_ptr<Renderer> createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
+    if (opt.backend == "null") return std::make_unique<NullRenderer>();
+    if (opt.backend == "soft") {
+#ifdef GE2GL_HAVE_SOFT
+        soft::SoftOptions so;
+        so.threads = opt.threads;
+        return soft::createSoftRenderer(mem, so);
+#else
+        err = "backend 'soft' is not built in this version of ge2gl";
+        return nullptr;
+#endif
+    }
+    if (opt.backend == "gl") {
+#ifdef GE2GL_GL_READY
+        gl::GlOptions go;
+        if (opt.glContext == "egl") go.context = gl::ContextKind::EGL;
+        else if (opt.glContext != "osmesa") {
+            err = "unknown GL context '" + opt.glContext + "' (use osmesa or egl)";
+            return nullptr;
+        }
+        go.baseline = opt.glBaseline;
+        go.shaderDumpDir = opt.shaderDumpDir;
+        go.programCacheDir = opt.programCacheDir;
+        auto r = gl::createGlRenderer(mem, go, err);
+        if (!r && err.empty()) err = "could not create the GL backend";
+        return r;
+#else
+        err = "backend 'gl' is not built in this version of ge2gl";
+        return nullptr;
+#endif
+    }
+    err = "unknown backend '" + opt.backend + "' (use soft, gl or null)";
+    return nullptr;
+}
+
+std::string backendStats(const std::string& backend, const Renderer& r) {
+#ifdef GE2GL_GL_READY
+    if (backend == "gl") return gl::glStatsText(gl::glStats(r));
+#endif
+    (void)backend;
+    (void)r;
+    return {};
+}
+
+bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
+                std::vector<u8>* vramOut, std::vector<u16>* depthOut) {
+    auto t0 = std::chrono::steady_clock::now();
+    Memory mem;
+    std::unique_ptr<Renderer> r = createBackend(opt, mem, err);
+    if (!r) return false;
+    GeEngine eng(mem, r.get());
+    dump::ReplayOptions ro;
+    ro.replayEnd = opt.replayEnd;
+    if (!dump::replayDump(d, eng, ro, out.replay, err)) return false;
+    dump::displayedFramebuffer(out.replay, eng.state(), out.displayAddr, out.displayStride, out.displayFormat);
+    out.frame = readFrame(mem, out.displayAddr, out.displayStride, out.displayFormat);
+    out.engineStats = eng.stats();
+    out.backendStats = backendStats(opt.backend, *r);
+    out.depthAddr = eng.state().depthbufAddr();
+    out.depthStride = eng.state().depthbufStride();
+    if (vramOut) vramOut->assign(mem.vram(), mem.vram() + Memory::kVramSize);
+    if (depthOut) {
+        depthOut->assign(480 * 272, 0);
+        const u32 stride = out.depthStride ? out.depthStride : 512;
+        for (u32 y = 0; y < 272; ++y)
+            for (u32 x = 0; x < 480; ++x) (*depthOut)[y * 480 + x] = mem.read16(out.depthAddr + 2 * (y * stride + x));
+    }
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return true;
+}
+
+bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOutput& out, std::string& err,
+                    std::vector<u8>* vramOut, std::vector<u16>* depthOut) {
+    auto t0 = std::chrono::steady_clock::now();
+    dump::Dump d;
+    if (!dump::loadDump(path, d, err)) return false;
+    if (!renderDump(d, opt, out, err, vramOut, depthOut)) return false;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return true;
+}
+
+std::string dumpName(const std::string& path) {
+    std::string n = std::filesystem::path(path).filename().string();
+    auto strip = [&](const char* suf) {
+        size_t l = std::strlen(suf);
+        if (n.size() >= l) {
+            std::string tail = n.substr(n.size() - l);
+            for (auto& c : tail) c = char(std::tolower(static_cast<unsigned char>(c)));
+            if (tail == suf) n.resize(n.size() - l);
+        }
+    };
+    strip(".zip");
+    strip(".ppdmp");
+    return n;
+}
+
+}  // namespace ge::tools
