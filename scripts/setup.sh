@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ge2gl needs, only those that are missing. Run as root (or with sudo).
+set -euo pipefail
+pkgs=(cmake ninja-build g++ pkg-config libosmesa6-dev libegl-dev libgl-dev libglm-dev libgtest-dev libgmock-dev
+      libopenimageio-dev libzstd-dev libsnappy-dev libzip-dev libxxhash-dev libcli11-dev libbenchmark-dev zlib1g-dev)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

