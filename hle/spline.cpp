@@ -1,0 +1,304 @@
+// Bezier and spline patch tessellation (manual §5, §13.1.1; ge-reference.md §3.2).
+//
+// Control point (u, v) is vertex number v·Ucount + u (through the index buffer when IT ≠ 0), read
+// with VertexReader (morphing applied, skinning not: the reference does not apply it to patches).
+// Every output attribute is the same tensor-product combination of the control points:
+//   S(u, v) = Σa Σb Nu_a(u) · Nv_b(v) · P(first_u + a, first_v + b)
+// with Bernstein weights for Bezier (manual §5.1) and the cubic B-spline basis of the knot
+// vector for splines (manual §5.2.1).
+//
+// Layout of the output (follows PPSSPP, whose software renderer made the reference renders):
+// - Bezier: each patch is tessellated on its own into (divU+1)·(divV+1) vertices (edge vertices
+//   are duplicated between neighbouring patches), patches in control-point order (V outer).
+// - Spline: one shared grid of ((Ucount−3)·divU + 1) · ((Vcount−3)·divV + 1) vertices.
+// - Vertices are row-major (U fastest). For grid quad (i, j) with corners
+//   q0 = (i, j), q1 = (i+1, j), q2 = (i, j+1), q3 = (i+1, j+1):
+//   triangles (q0, q2, q1), (q1, q2, q3); lines q0–q2, q1–q3, q1–q2; points: every vertex once.
+#include "hle/spline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace ge {
+
+namespace {
+
+// Guard against absurd division counts (255·252 per direction would be 4·10^9 vertices).
+constexpr u64 kMaxOutputVertices = 1u << 21;
+
+struct Basis1D {
+    u32 first = 0;      // first control point index in this direction
+    float w[4] = {};    // basis values
+    float d[4] = {};    // derivatives with respect to the parameter
+};
+
+void bezierDerivs(float t, float d[4]) {
+    const float s = 1.0f - t;
+    d[0] = -3.0f * s * s;
+    d[1] = 3.0f * s * s - 6.0f * t * s;
+    d[2] = 6.0f * t * s - 3.0f * t * t;
+    d[3] = 3.0f * t * t;
+}
+
+// Non-zero B-spline basis functions of degree p at u in span k (knots[k] ≤ u ≤ knots[k+1],
+// knots[k+1] > knots[k]): N[0..p] = N_{k−p,p} … N_{k,p}. The denominators are never zero because
+// the span has non-zero length (see splineKnots: spans 3 … n−1 are always [i−3, i−2]).
+void basisFuns(const std::vector<float>& U, int k, float u, int p, float N[4]) {
+    float left[4] = {}, right[4] = {};
+    N[0] = 1.0f;
+    for (int j = 1; j <= p; ++j) {
+        left[j] = u - U[size_t(k + 1 - j)];
+        right[j] = U[size_t(k + j)] - u;
+        float saved = 0.0f;
+        for (int r = 0; r < j; ++r) {
+            const float temp = N[r] / (right[r + 1] + left[j - r]);
+            N[r] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        N[j] = saved;
+    }
+}
+
+// Cubic spline basis for `count` control points at parameter patch + t (0 ≤ t ≤ 1).
+Basis1D splineBasis(const std::vector<float>& U, u32 patch, float t) {
+    Basis1D b;
+    const int k = int(patch) + 3;  // span [patch, patch + 1]
+    const float u = float(patch) + t;
+    b.first = patch;               // control points k−3 … k
+    basisFuns(U, k, u, 3, b.w);
+    // Derivative from the degree-2 functions: N'_{i,3} = 3·(N_{i,2}/(U[i+3]−U[i]) − N_{i+1,2}/(U[i+4]−U[i+1])).
+    float N2[4] = {};
+    basisFuns(U, k, u, 2, N2);  // N_{k−2,2}, N_{k−1,2}, N_{k,2}
+    auto n2 = [&](int i) -> float { return (i >= k - 2 && i <= k) ? N2[i - (k - 2)] : 0.0f; };
+    for (int a = 0; a < 4; ++a) {
+        const int i = k - 3 + a;
+        float v = 0.0f;
+        const float d0 = U[size_t(i + 3)] - U[size_t(i)], d1 = U[size_t(i + 4)] - U[size_t(i + 1)];
+        if (d0 != 0.0f) v += n2(i) / d0;
+        if (d1 != 0.0f) v -= n2(i + 1) / d1;
+        b.d[a] = 3.0f * v;
+    }
+    return b;
+}
+
+Basis1D bezierBasis(u32 patch, float t) {
+    Basis1D b;
+    b.first = 3 * patch;
+    bezierWeights(t, b.w);
+    bezierDerivs(t, b.d);
+    return b;
+}
+
+struct Surface {
+    const std::vector<DecodedVertex>* cps = nullptr;
+    u32 ucount = 0;
+    bool hasUV = false, hasColor = false, hasNormal = false, hasWeights = false;
+    bool genNormals = false, reverseFace = false;
+    u32 weightCount = 0;
+    bool spline = false;
+    std::vector<float> knotsU, knotsV;
+
+    Basis1D basisU(u32 patch, float t) const { return spline ? splineBasis(knotsU, patch, t) : bezierBasis(patch, t); }
+    Basis1D basisV(u32 patch, float t) const { return spline ? splineBasis(knotsV, patch, t) : bezierBasis(patch, t); }
+    const DecodedVertex& cp(const Basis1D& bu, const Basis1D& bv, int a, int b) const {
+        return (*cps)[size_t(bv.first + u32(b)) * ucount + bu.first + u32(a)];
+    }
+
+    void derivatives(const Basis1D& bu, const Basis1D& bv, float du[3], float dv[3]) const {
+        for (int c = 0; c < 3; ++c) du[c] = dv[c] = 0.0f;
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a) {
+                const DecodedVertex& p = cp(bu, bv, a, b);
+                const float fu = bu.d[a] * bv.w[b], fv = bu.w[a] * bv.d[b];
+                for (int c = 0; c < 3; ++c) {
+                    du[c] += fu * p.pos[c];
+                    dv[c] += fv * p.pos[c];
+                }
+            }
+    }
+
+    // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv).
+    DecodedVertex eval(u32 pu, float tu, u32 pv, float tv) const {
+        const Basis1D bu = basisU(pu, tu), bv = basisV(pv, tv);
+        DecodedVertex out;
+        float col[4] = {};
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a) {
+                const float f = bu.w[a] * bv.w[b];
+                const DecodedVertex& p = cp(bu, bv, a, b);
+                for (int c = 0; c < 3; ++c) out.pos[c] += f * p.pos[c];
+                if (hasUV)
+                    for (int c = 0; c < 2; ++c) out.uv[c] += f * p.uv[c];
+                if (hasNormal)
+                    for (int c = 0; c < 3; ++c) out.nrm[c] += f * p.nrm[c];
+                if (hasWeights)
+                    for (u32 c = 0; c < weightCount; ++c) out.weights[c] += f * p.weights[c];
+                if (hasColor)
+                    for (int c = 0; c < 4; ++c) col[c] += f * float(p.color[c]);
+            }
+        if (hasColor) {
+            for (int c = 0; c < 4; ++c) {
+                const float v = std::floor(col[c] + 0.5f);
+                out.color[c] = !(v > 0.0f) ? 0 : v >= 255.0f ? 255 : u8(v);
+            }
+        } else {
+            // No vertex colour: every control point carries the material colour (MAC/MAA).
+            std::copy((*cps)[0].color, (*cps)[0].color + 4, out.color);
+        }
+        if (!hasUV) {
+            // Generated texture coordinates: S = patch_u + i/divU, T = patch_v + j/divV (§3.2, manual §13.1.1).
+            out.uv[0] = float(pu) + tu;
+            out.uv[1] = float(pv) + tv;
+        }
+        if (genNormals) {
+            float du[3], dv[3];
+            derivatives(bu, bv, du, dv);
+            float n[3] = {du[1] * dv[2] - du[2] * dv[1], du[2] * dv[0] - du[0] * dv[2], du[0] * dv[1] - du[1] * dv[0]};
+            float len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            if (!(len2 > 1e-30f)) {
+                // Degenerate derivative (collapsed edge, e.g. a pole): take the normal a little way
+                // inside the patch, which is the limit the surface approaches.
+                const float nu = tu < 0.5f ? tu + 1.0f / 64 : tu - 1.0f / 64;
+                const float nv = tv < 0.5f ? tv + 1.0f / 64 : tv - 1.0f / 64;
+                derivatives(basisU(pu, nu), basisV(pv, nv), du, dv);
+                n[0] = du[1] * dv[2] - du[2] * dv[1];
+                n[1] = du[2] * dv[0] - du[0] * dv[2];
+                n[2] = du[0] * dv[1] - du[1] * dv[0];
+                len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+            }
+            if (len2 > 1e-30f) {
+                // PFACE = 1 reverses the generated normals (§3.2).
+                const float inv = (reverseFace ? -1.0f : 1.0f) / std::sqrt(len2);
+                for (int c = 0; c < 3; ++c) out.nrm[c] = n[c] * inv;
+            }
+        }
+        return out;
+    }
+};
+
+void appendGridIndices(u32 base, u32 nu, u32 nv, u32 patchPrim, std::vector<u32>& idx) {
+    // nu × nv quads over a (nu+1) × (nv+1) vertex grid starting at `base`.
+    for (u32 j = 0; j < nv; ++j)
+        for (u32 i = 0; i < nu; ++i) {
+            const u32 q0 = base + j * (nu + 1) + i, q1 = q0 + 1, q2 = q0 + nu + 1, q3 = q2 + 1;
+            if (patchPrim == 1) {
+                idx.insert(idx.end(), {q0, q2, q1, q3, q1, q2});
+            } else {
+                idx.insert(idx.end(), {q0, q2, q1, q1, q2, q3});
+            }
+        }
+}
+
+bool fail(std::string* err, const char* msg, u32 a = 0, u32 b = 0) {
+    if (err) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, msg, a, b);
+        *err = buf;
+    }
+    return false;
+}
+
+}  // namespace
+
+void bezierWeights(float t, float w[4]) {
+    // Bernstein basis (manual §5.1).
+    const float s = 1.0f - t;
+    w[0] = s * s * s;
+    w[1] = 3.0f * t * s * s;
+    w[2] = 3.0f * t * t * s;
+    w[3] = t * t * t;
+}
+
+void splineKnots(int n, int knotType, std::vector<float>& knots) {
+    // Manual §5.2.1 with m = n − 1: {−3, −2, −1, 0, …, m−2, m−1, m, m+1}; an open start replaces
+    // the first three knots by 0, an open end the last three by m−2 (= n − 3).
+    knots.assign(size_t(std::max(n, 0) + 4), 0.0f);
+    for (int i = 0; i < n + 4; ++i) knots[size_t(i)] = float(i - 3);
+    if (knotType & 1)
+        for (int i = 0; i < 3; ++i) knots[size_t(i)] = 0.0f;
+    if (knotType & 2)
+        for (int i = n + 1; i < n + 4; ++i) knots[size_t(i)] = float(n - 3);
+}
+
+bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, TessOutput& out, std::string* err) {
+    out.verts.clear();
+    out.indices.clear();
+    out.prim = p.patchPrim == 0 ? GE_PRIM_TRIANGLES : p.patchPrim == 1 ? GE_PRIM_LINES : GE_PRIM_POINTS;
+
+    const u32 ucount = p.ucount, vcount = p.vcount;
+    // Fewer than 4 control points in either direction draws nothing (§3.2, observed: PPSSPP).
+    if (ucount < 4 || vcount < 4) return true;
+    const u32 divU = std::max<u32>(p.divU, 1), divV = std::max<u32>(p.divV, 1);
+    const u32 patchesU = p.spline ? ucount - 3 : (ucount - 1) / 3;
+    const u32 patchesV = p.spline ? vcount - 3 : (vcount - 1) / 3;
+    const u64 total = p.spline ? u64(patchesU * divU + 1) * (patchesV * divV + 1)
+                               : u64(patchesU) * patchesV * (divU + 1) * (divV + 1);
+    if (total > kMaxOutputVertices) return fail(err, "patch too large: %u x %u divisions", divU, divV);
+
+    // Control points.
+    VertexReader reader(mem, st, p.vtype);
+    const u32 n = ucount * vcount;
+    std::vector<u32> indices;
+    if (!reader.readIndices(p.indexAddr, n, indices))
+        return fail(err, "patch index buffer 0x%08x (%u indices) is not readable", p.indexAddr, n);
+    std::vector<DecodedVertex> cps(n);
+    for (u32 i = 0; i < n; ++i)
+        if (!reader.read(p.vertexAddr, indices[i], cps[i]))
+            return fail(err, "patch control point %u (vertex %u) is not readable", i, indices[i]);
+
+    Surface s;
+    s.cps = &cps;
+    s.ucount = ucount;
+    s.spline = p.spline;
+    s.hasUV = reader.hasUV();
+    s.hasColor = reader.hasColor();
+    s.hasNormal = reader.hasNormal();
+    s.hasWeights = reader.hasWeights();
+    s.weightCount = reader.weightCount();
+    s.reverseFace = p.reverseFace;
+    // Normals are generated when the vertex has none and something reads them: lighting (§3.2),
+    // shade mapping, or projection mapping from the normal (TMAP source 2/3).
+    s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));
+    if (p.spline) {
+        splineKnots(int(ucount), int(p.uknot & 3), s.knotsU);
+        splineKnots(int(vcount), int(p.vknot & 3), s.knotsV);
+    }
+
+    out.verts.reserve(size_t(total));
+    const float invU = 1.0f / float(divU), invV = 1.0f / float(divV);
+    // Local parameter of step i in a patch of `div` steps; exact 0 and 1 at the ends.
+    auto local = [](u32 i, u32 div, float inv) { return i == div ? 1.0f : float(i) * inv; };
+
+    if (p.spline) {
+        const u32 nu = patchesU * divU, nv = patchesV * divV;
+        for (u32 j = 0; j <= nv; ++j) {
+            const u32 pv = std::min(j / divV, patchesV - 1);
+            const float tv = local(j - pv * divV, divV, invV);
+            for (u32 i = 0; i <= nu; ++i) {
+                const u32 pu = std::min(i / divU, patchesU - 1);
+                const float tu = local(i - pu * divU, divU, invU);
+                out.verts.push_back(s.eval(pu, tu, pv, tv));
+            }
+        }
+        if (out.prim == GE_PRIM_POINTS) {
+            for (u32 k = 0; k < out.verts.size(); ++k) out.indices.push_back(k);
+        } else {
+            appendGridIndices(0, nu, nv, p.patchPrim, out.indices);
+        }
+        return true;
+    }
+
+    for (u32 pv = 0; pv < patchesV; ++pv)
+        for (u32 pu = 0; pu < patchesU; ++pu) {
+            const u32 base = u32(out.verts.size());
+            for (u32 j = 0; j <= divV; ++j)
+                for (u32 i = 0; i <= divU; ++i) out.verts.push_back(s.eval(pu, local(i, divU, invU), pv, local(j, divV, invV)));
+            if (out.prim != GE_PRIM_POINTS) appendGridIndices(base, divU, divV, p.patchPrim, out.indices);
+        }
+    if (out.prim == GE_PRIM_POINTS)
+        for (u32 k = 0; k < out.verts.size(); ++k) out.indices.push_back(k);
+    return true;
+}
+
+}  // namespace ge

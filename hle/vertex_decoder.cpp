@@ -1,0 +1,296 @@
+// Vertex decoding (manual §6, §7; ge-reference.md §5).
+#include "hle/vertex_decoder.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <numeric>
+
+#include "hle/pixel_format.h"
+
+namespace ge {
+
+namespace {
+
+inline float readF32(const u8* p) {
+    u32 bits = readLE32(p);
+    float f;
+    std::memcpy(&f, &bits, 4);
+    return f;
+}
+
+// The decoded components of one stored copy, before morph blending (everything as float so that
+// morphing can weight every component, colour included: manual Equation 7-1).
+struct RawVertex {
+    float pos[3] = {}, uv[2] = {}, nrm[3] = {}, w[8] = {}, col[4] = {};
+};
+
+}  // namespace
+
+VertexReader::VertexReader(const Memory& mem, const GeState& st, u32 vtype)
+    : mem_(mem), st_(st), vtype_(vtype & 0xFFFFFF), layout_(VertexLayout::fromVtype(vtype)) {
+    morphs_ = ((vtype_ >> 18) & 7) + 1;
+    stride_ = u32(layout_.size) * morphs_;
+    for (u32 i = 0; i < morphs_; ++i) morphW_[i] = st.WEIGHT_value(int(i));
+}
+
+u32 VertexReader::stride() const { return stride_; }
+const VertexLayout& VertexReader::layout() const { return layout_; }
+bool VertexReader::hasColor() const { return ((vtype_ >> 2) & 7) >= 4; }  // CT 1–3: invalid, no colour (§5.1)
+bool VertexReader::hasNormal() const { return ((vtype_ >> 5) & 3) != 0; }
+bool VertexReader::hasUV() const { return (vtype_ & 3) != 0; }
+bool VertexReader::hasWeights() const { return ((vtype_ >> 9) & 3) != 0; }
+bool VertexReader::hasPosition() const { return ((vtype_ >> 7) & 3) != 0; }
+bool VertexReader::through() const { return (vtype_ >> 23) & 1; }
+u32 VertexReader::morphCount() const { return morphs_; }
+u32 VertexReader::weightCount() const { return hasWeights() ? ((vtype_ >> 14) & 7) + 1 : 0; }
+u32 VertexReader::indexSize() const {
+    static constexpr u32 sizes[4] = {0, 1, 2, 4};
+    return sizes[(vtype_ >> 11) & 3];
+}
+
+namespace {
+
+// Decodes one stored copy at p (layout size bytes, already bounds-checked) per §5.4.
+void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawVertex& r) {
+    const u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
+    const u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
+
+    // Weights: u8 /128, u16 /32768, float; not renormalised (§5.4).
+    if (wt) {
+        const u8* q = p + l.weightOff;
+        for (u32 i = 0; i < wc; ++i) {
+            switch (wt) {
+            case 1: r.w[i] = float(q[i]) / 128.0f; break;
+            case 2: r.w[i] = float(readLE16(q + 2 * i)) / 32768.0f; break;
+            default: r.w[i] = readF32(q + 4 * i); break;
+            }
+        }
+    }
+    // Texture coordinates: transform mode u8 /128, u16 /32768; through mode u16 are texels and
+    // u8 keeps /128 as PPSSPP does (§5.4).
+    if (tc) {
+        const u8* q = p + l.tcOff;
+        switch (tc) {
+        case 1:
+            r.uv[0] = float(q[0]) / 128.0f;
+            r.uv[1] = float(q[1]) / 128.0f;
+            break;
+        case 2:
+            if (through) {
+                r.uv[0] = float(readLE16(q));
+                r.uv[1] = float(readLE16(q + 2));
+            } else {
+                r.uv[0] = float(readLE16(q)) / 32768.0f;
+                r.uv[1] = float(readLE16(q + 2)) / 32768.0f;
+            }
+            break;
+        default:
+            r.uv[0] = readF32(q);
+            r.uv[1] = readF32(q + 4);
+            break;
+        }
+    }
+    // Colour: 16-bit formats expand by bit replication (§5.4); 8888 bytes R, G, B, A.
+    if (col >= 4) {
+        const u8* q = p + l.colOff;
+        u32 c;
+        switch (col) {
+        case 4: c = decode5650(readLE16(q)); break;
+        case 5: c = decode5551(readLE16(q)); break;
+        case 6: c = decode4444(readLE16(q)); break;
+        default: c = readLE32(q); break;
+        }
+        for (int i = 0; i < 4; ++i) r.col[i] = float((c >> (8 * i)) & 0xFF);
+    }
+    // Normal: s8 /128, s16 /32768, float.
+    if (nrm) {
+        const u8* q = p + l.nrmOff;
+        for (int i = 0; i < 3; ++i) {
+            switch (nrm) {
+            case 1: r.nrm[i] = float(s8(q[i])) / 128.0f; break;
+            case 2: r.nrm[i] = float(s16(readLE16(q + 2 * i))) / 32768.0f; break;
+            default: r.nrm[i] = readF32(q + 4 * i); break;
+            }
+        }
+    }
+    // Position (§5.4): transform mode s8 /128, s16 /32768, float. Through mode: s8 decodes as 0
+    // (observed: SWR), s16 gives signed X, Y and unsigned Z, float Z is clamped to 0–65535.
+    if (pos) {
+        const u8* q = p + l.posOff;
+        switch (pos) {
+        case 1:
+            if (!through)
+                for (int i = 0; i < 3; ++i) r.pos[i] = float(s8(q[i])) / 128.0f;
+            break;
+        case 2:
+            if (through) {
+                r.pos[0] = float(s16(readLE16(q)));
+                r.pos[1] = float(s16(readLE16(q + 2)));
+                r.pos[2] = float(readLE16(q + 4));
+            } else {
+                for (int i = 0; i < 3; ++i) r.pos[i] = float(s16(readLE16(q + 2 * i))) / 32768.0f;
+            }
+            break;
+        default:
+            for (int i = 0; i < 3; ++i) r.pos[i] = readF32(q + 4 * i);
+            // std::clamp keeps a NaN as is; the range check below maps it to 0 so Z stays defined.
+            if (through) r.pos[2] = (r.pos[2] >= 0.0f) ? std::min(r.pos[2], 65535.0f) : 0.0f;
+            break;
+        }
+    }
+}
+
+inline u8 colorToU8(float c) {
+    // Morphed colours are truncated after clamping to 0–255 (a NaN becomes 0).
+    if (!(c > 0.0f)) return 0;
+    if (c >= 255.0f) return 255;
+    return u8(c);
+}
+
+}  // namespace
+
+bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
+    out = DecodedVertex{};
+    const bool thru = through();
+    // Morphing is not executed in through mode (manual §7.1): only the first copy is used.
+    const u32 copies = thru ? 1 : morphs_;
+    const u64 addr = u64(base) + u64(index) * stride_;
+    const u32 need = u32(layout_.size) * copies;
+    if (addr + need > 0x100000000ull) return false;
+    const u8* p = mem_.ptr(u32(addr), need);
+    if (!p) return false;
+
+    RawVertex sum;
+    if (copies == 1) {
+        decodeRaw(p, vtype_, layout_, thru, sum);
+    } else {
+        // P' = Σ Mi·Pi over every component (manual Equation 7-1, ref §5.5); weights not normalised.
+        for (u32 m = 0; m < copies; ++m) {
+            RawVertex r;
+            decodeRaw(p + size_t(m) * layout_.size, vtype_, layout_, thru, r);
+            const float w = morphW_[m];
+            for (int i = 0; i < 3; ++i) sum.pos[i] += w * r.pos[i];
+            for (int i = 0; i < 2; ++i) sum.uv[i] += w * r.uv[i];
+            for (int i = 0; i < 3; ++i) sum.nrm[i] += w * r.nrm[i];
+            for (int i = 0; i < 8; ++i) sum.w[i] += w * r.w[i];
+            for (int i = 0; i < 4; ++i) sum.col[i] += w * r.col[i];
+        }
+    }
+    std::copy(sum.pos, sum.pos + 3, out.pos);
+    std::copy(sum.uv, sum.uv + 2, out.uv);
+    std::copy(sum.nrm, sum.nrm + 3, out.nrm);
+    std::copy(sum.w, sum.w + 8, out.weights);
+    if (hasColor()) {
+        for (int i = 0; i < 4; ++i) out.color[i] = colorToU8(sum.col[i]);
+    } else {
+        // No vertex colour: material ambient colour and alpha (ref §5.5).
+        const u32 mac = st_.MAC_rgb();
+        out.color[0] = u8(mac);
+        out.color[1] = u8(mac >> 8);
+        out.color[2] = u8(mac >> 16);
+        out.color[3] = u8(st_.MAA_alpha());
+    }
+    return true;
+}
+
+bool VertexReader::readIndices(u32 iaddr, u32 count, std::vector<u32>& out) const {
+    out.assign(count, 0);
+    const u32 isz = indexSize();
+    if (isz == 0) {
+        std::iota(out.begin(), out.end(), 0u);
+        return true;
+    }
+    const u64 bytes = u64(count) * isz;
+    if (bytes == 0) return true;
+    if (u64(iaddr) + bytes > 0x100000000ull) return false;
+    const u8* p = mem_.ptr(iaddr, u32(bytes));
+    if (!p) return false;
+    switch (isz) {
+    case 1:
+        for (u32 i = 0; i < count; ++i) out[i] = p[i];
+        break;
+    case 2:
+        for (u32 i = 0; i < count; ++i) out[i] = readLE16(p + 2 * i);
+        break;
+    default:
+        for (u32 i = 0; i < count; ++i) out[i] = readLE32(p + 4 * i);
+        break;
+    }
+    return true;
+}
+
+void applySkinning(const GeState& st, u32 vtype, DecodedVertex& v) {
+    const u32 wt = (vtype >> 9) & 3;
+    if (wt == 0 || ((vtype >> 23) & 1)) return;  // skinning is transform-mode only (§5.5)
+    const u32 n = ((vtype >> 14) & 7) + 1;
+    float pos[3] = {}, nrm[3] = {};
+    for (u32 b = 0; b < n; ++b) {
+        const float w = v.weights[b];
+        // A zero weight contributes nothing; skipping it keeps unused (possibly garbage) bone
+        // matrices from turning the result into NaN.
+        if (w == 0.0f) continue;
+        const float* m = st.bone + 12 * b;  // element k = row k%3, column k/3 (§3.4)
+        for (int r = 0; r < 3; ++r) {
+            const float p = m[r] * v.pos[0] + m[3 + r] * v.pos[1] + m[6 + r] * v.pos[2] + m[9 + r];
+            const float q = m[r] * v.nrm[0] + m[3 + r] * v.nrm[1] + m[6 + r] * v.nrm[2];
+            pos[r] += w * p;
+            nrm[r] += w * q;
+        }
+    }
+    std::copy(pos, pos + 3, v.pos);
+    std::copy(nrm, nrm + 3, v.nrm);
+}
+
+bool decodeDrawVertices(const Memory& mem, const GeState& st, u32 vtype, u32 vaddr, u32 iaddr, u32 count,
+                        std::vector<DecodedVertex>& out, std::string* err) {
+    out.assign(count, DecodedVertex{});
+    if (count == 0) return true;
+    VertexReader reader(mem, st, vtype);
+    std::vector<u32> indices;
+    char buf[128];
+    if (!reader.readIndices(iaddr, count, indices)) {
+        if (err) {
+            std::snprintf(buf, sizeof buf, "index buffer 0x%08x (%u x %u bytes) is not readable", iaddr, count,
+                          reader.indexSize());
+            *err = buf;
+        }
+        return false;
+    }
+    bool ok = true;
+    u32 badIndex = 0;
+    auto decode = [&](u32 index, DecodedVertex& v) {
+        if (!reader.read(vaddr, index, v)) {
+            if (ok) badIndex = index;
+            ok = false;
+            return;
+        }
+        applySkinning(st, vtype, v);
+    };
+
+    const auto [mnIt, mxIt] = std::minmax_element(indices.begin(), indices.end());
+    const u32 mn = *mnIt, mx = *mxIt;
+    const u64 range = u64(mx) - mn + 1;
+    if (range <= u64(count) * 2 + 64) {
+        // Dense: decode the index range once, then gather.
+        std::vector<DecodedVertex> verts(static_cast<size_t>(range));
+        for (u32 i = 0; i < range; ++i) decode(mn + i, verts[i]);
+        for (u32 i = 0; i < count; ++i) out[i] = verts[indices[i] - mn];
+    } else {
+        // Sparse (wild indices): decode each distinct index once.
+        std::vector<u32> uniq(indices);
+        std::sort(uniq.begin(), uniq.end());
+        uniq.erase(std::unique(uniq.begin(), uniq.end()), uniq.end());
+        std::vector<DecodedVertex> verts(uniq.size());
+        for (size_t i = 0; i < uniq.size(); ++i) decode(uniq[i], verts[i]);
+        for (u32 i = 0; i < count; ++i)
+            out[i] = verts[size_t(std::lower_bound(uniq.begin(), uniq.end(), indices[i]) - uniq.begin())];
+    }
+    if (!ok && err) {
+        std::snprintf(buf, sizeof buf, "vertex %u at 0x%08x + %u * %u bytes is not readable", badIndex, vaddr,
+                      badIndex, reader.stride());
+        *err = buf;
+    }
+    return ok;
+}
+
+}  // namespace ge
