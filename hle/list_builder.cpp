@@ -1,0 +1,770 @@
+#include "hle/list_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "hle/dump/dump_writer.h"
+
+namespace ge {
+
+namespace {
+
+// Saturating conversion of a scaled float to an integer range (round half away from zero).
+s32 toFixed(float v, float scale, s32 lo, s32 hi) {
+    float s = v * scale;
+    if (!(s == s)) return 0;  // NaN
+    if (s <= float(lo)) return lo;
+    if (s >= float(hi)) return hi;
+    return s32(std::lround(s));
+}
+
+void put16(u8* p, s32 v) { writeLE16(p, u16(v)); }
+void putF(u8* p, float f) {
+    u32 bits;
+    std::memcpy(&bits, &f, 4);
+    writeLE32(p, bits);
+}
+
+// VRAM addresses compared without the mirror bits (all four mirrors are the same bytes for
+// drawing, ge-reference.md §7.3); other addresses just drop bits 31..28.
+u32 canonical(u32 addr) {
+    u32 a = Memory::normalize(addr);
+    if (Memory::isVram(a)) return Memory::kVramBase | (a & (Memory::kVramSize - 1));
+    return a;
+}
+
+// Bits per texel of a texture format (ge-reference.md §6.1).
+u32 texelBits(u32 fmt) {
+    static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 0, 0, 0, 0, 0};
+    return bits[fmt & 15];
+}
+
+}  // namespace
+
+u32 log2Floor(u32 v) {
+    u32 r = 0;
+    while (v > 1) {
+        v >>= 1;
+        ++r;
+    }
+    return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Vertex packing (ge-reference.md §5.2 layout, §5.4 value scaling)
+
+void packVertex(u32 vtype, const BuildVertex& v, u8* out) {
+    const VertexLayout l = VertexLayout::fromVtype(vtype);
+    std::memset(out, 0, l.size);
+    const bool through = (vtype >> 23) & 1;
+    const u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
+    const u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
+
+    if (wt) {
+        u8* p = out + l.weightOff;
+        for (u32 i = 0; i < wc; ++i) {
+            if (wt == 1) p[i] = u8(toFixed(v.w[i], 128.f, 0, 255));
+            else if (wt == 2) put16(p + 2 * i, toFixed(v.w[i], 32768.f, 0, 65535));
+            else putF(p + 4 * i, v.w[i]);
+        }
+    }
+    if (tc) {
+        u8* p = out + l.tcOff;
+        if (tc == 1) {
+            p[0] = u8(toFixed(v.u, 128.f, 0, 255));
+            p[1] = u8(toFixed(v.v, 128.f, 0, 255));
+        } else if (tc == 2) {
+            // Through mode: 16-bit coordinates are texels; transform mode: 0x8000 = 1.0.
+            float scale = through ? 1.f : 32768.f;
+            put16(p, toFixed(v.u, scale, 0, 65535));
+            put16(p + 2, toFixed(v.v, scale, 0, 65535));
+        } else {
+            putF(p, v.u);
+            putF(p + 4, v.v);
+        }
+    }
+    if (col >= 4) {
+        u8* p = out + l.colOff;
+        u32 r = v.color & 0xFF, g = (v.color >> 8) & 0xFF, b = (v.color >> 16) & 0xFF, a = v.color >> 24;
+        switch (col) {
+        case 4: writeLE16(p, u16((r >> 3) | (g >> 2) << 5 | (b >> 3) << 11)); break;
+        case 5: writeLE16(p, u16((r >> 3) | (g >> 3) << 5 | (b >> 3) << 10 | (a >> 7) << 15)); break;
+        case 6: writeLE16(p, u16((r >> 4) | (g >> 4) << 4 | (b >> 4) << 8 | (a >> 4) << 12)); break;
+        default: writeLE32(p, v.color); break;
+        }
+    }
+    if (nrm) {
+        u8* p = out + l.nrmOff;
+        const float n[3] = {v.nx, v.ny, v.nz};
+        for (int i = 0; i < 3; ++i) {
+            if (nrm == 1) p[i] = u8(s8(toFixed(n[i], 128.f, -128, 127)));
+            else if (nrm == 2) put16(p + 2 * i, toFixed(n[i], 32768.f, -32768, 32767));
+            else putF(p + 4 * i, n[i]);
+        }
+    }
+    {
+        u8* p = out + l.posOff;
+        const float c[3] = {v.x, v.y, v.z};
+        for (int i = 0; i < 3; ++i) {
+            if (pos == 1 || pos == 0) {
+                if (pos == 1) p[i] = u8(s8(toFixed(c[i], 128.f, -128, 127)));
+            } else if (pos == 2) {
+                if (through) put16(p + 2 * i, i == 2 ? toFixed(c[i], 1.f, 0, 65535) : toFixed(c[i], 1.f, -32768, 32767));
+                else put16(p + 2 * i, toFixed(c[i], 32768.f, -32768, 32767));
+            } else {
+                putF(p + 4 * i, c[i]);
+            }
+        }
+    }
+}
+
+std::vector<u8> packVertices(u32 vtype, const BuildVertex* v, u32 count) {
+    const u32 size = VertexLayout::fromVtype(vtype).size;
+    std::vector<u8> out(size_t(size) * count);
+    for (u32 i = 0; i < count; ++i) packVertex(vtype, v[i], out.data() + size_t(i) * size);
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// DumpRecorder
+
+DumpRecorder::DumpRecorder(const Memory& mem, dump::DumpWriter& out) : mem_(mem), out_(out) {}
+
+void DumpRecorder::begin(const GeState& initial, u32 displayAddr, u32 stride, u32 format) {
+    st_ = initial;
+    u32 ctx[512];
+    st_.saveContext(ctx);
+    out_.init(ctx);
+    out_.display(displayAddr, stride, format);
+    begun_ = true;
+}
+
+void DumpRecorder::end(u32 displayAddr, u32 stride, u32 format) {
+    flushBlock();
+    out_.display(displayAddr, stride, format);
+}
+
+u32 DumpRecorder::formAddress(u32 arg) const {
+    // ge-reference.md §4.2: (BASE-high | arg) + OFFSET, 28 bits (PPSSPP keeps BASE bits 19..16).
+    u32 hi = (st_.regs[GE_CMD_BASE] & 0x000F0000) << 8;
+    return ((hi | (arg & 0xFFFFFF)) + st_.offsetAddr) & 0x0FFFFFFF;
+}
+
+void DumpRecorder::flushBlock() {
+    if (block_.empty()) return;
+    out_.registers(block_);
+    block_.clear();
+}
+
+void DumpRecorder::command(u32 word) {
+    const u8 op = u8(word >> 24);
+    const u32 arg = word & 0xFFFFFF;
+    switch (op) {
+    // Words the recorder replaces by data records or that only steer the list: never stored in
+    // REGISTERS (ppdmp-format.md §3.2, §7 rule 4). Their effect on the pointers is tracked.
+    case GE_CMD_NOP: return;
+    case GE_CMD_VADR:
+        st_.regs[op] = word;
+        st_.vertexAddr = formAddress(arg);
+        return;
+    case GE_CMD_IADR:
+        st_.regs[op] = word;
+        st_.indexAddr = formAddress(arg);
+        return;
+    case GE_CMD_BASE: st_.regs[op] = word; return;
+    case GE_CMD_OFFSET: st_.offsetAddr = arg << 8; return;
+    case GE_CMD_ORIGIN:
+        warnings_.push_back("ORIGIN: the recorder does not know list addresses; OFFSET left as is");
+        return;
+    case GE_CMD_JUMP: case GE_CMD_BJUMP: case GE_CMD_CALL: case GE_CMD_RET:
+    case GE_CMD_END: case GE_CMD_SIGNAL: case GE_CMD_FINISH:
+        return;
+    case GE_CMD_BBOX: {
+        // BBOX advances the pointers like a draw (§4.6); its result is not replayed.
+        u32 count = arg & 0xFFFF;
+        if (st_.VTYPE_idx()) st_.indexAddr += count * st_.indexSize();
+        else st_.vertexAddr += count * st_.vertexStride();
+        return;
+    }
+    case GE_CMD_PRIM: case GE_CMD_BEZIER: case GE_CMD_SPLINE: recordDraw(word); return;
+    case GE_CMD_CLOAD: recordClut(word); return;
+    case GE_CMD_XSTART: recordTransfer(word); return;
+    default: break;
+    }
+    if (!geCmdKnown(op)) return;  // unknown opcodes are no-ops; nothing worth recording
+    st_.regs[op] = word;
+    block_.push_back(word);
+}
+
+void DumpRecorder::recordDraw(u32 word) {
+    const u8 op = u8(word >> 24);
+    u32 count;
+    if (op == GE_CMD_PRIM) count = word & 0xFFFF;
+    else count = (word & 0xFF) * ((word >> 8) & 0xFF);  // control points of a patch (§4.6)
+
+    flushBlock();
+    if (count > 0) {
+        if (st_.TME_on() && !st_.CMODE_on()) recordTextures();
+        const u32 stride = st_.vertexStride();
+        u32 vertexCount = count;
+        if (st_.VTYPE_idx()) {
+            const u32 isz = st_.indexSize();
+            std::vector<u8> idx(size_t(count) * isz);
+            if (!mem_.read(st_.indexAddr, idx.data(), u32(idx.size()))) {
+                warnings_.push_back("draw reads indices outside memory");
+                idx.assign(idx.size(), 0);
+            }
+            u32 maxIndex = 0;
+            for (u32 i = 0; i < count; ++i) {
+                const u8* p = idx.data() + size_t(i) * isz;
+                u32 v = isz == 1 ? p[0] : isz == 2 ? readLE16(p) : readLE32(p);
+                maxIndex = std::max(maxIndex, v);
+            }
+            out_.indices(idx.data(), u32(idx.size()));
+            vertexCount = maxIndex + 1;
+            st_.indexAddr += count * isz;
+        }
+        // §3.2: vertex bytes for the draw: count × stride (indexed: (maxIndex+1) × stride).
+        const u32 bytes = vertexCount * stride;
+        const u32 avail = mem_.validSize(st_.vertexAddr, bytes);
+        if (avail < bytes) warnings_.push_back("draw reads vertices outside memory");
+        if (const u8* p = mem_.ptr(st_.vertexAddr, avail)) out_.vertices(p, avail);
+        if (!st_.VTYPE_idx()) st_.vertexAddr += bytes;
+        const bool depthWritten = (st_.CMODE_on() && st_.CMODE_depth()) || (!st_.CMODE_on() && st_.ZTE_on() && !st_.ZMSK_nowrite());
+        markDrawnBuffers(depthWritten);
+    }
+    st_.regs[op] = word;
+    block_.push_back(word);
+    ++kicks_;
+}
+
+void DumpRecorder::recordTextures() {
+    // Levels 0..MXL with a non-zero address (ppdmp-format.md §3.2: the recorder records every
+    // level it may sample; levels above MXL are never read).
+    const u32 maxLevel = std::min<u32>(st_.TMODE_maxlevel(), 7);
+    const u32 bits = texelBits(st_.TPF_format());
+    if (bits == 0) {
+        warnings_.push_back("texturing with an invalid texture format");
+        return;
+    }
+    for (u32 level = 0; level <= maxLevel; ++level) {
+        const u32 addr = st_.textureAddr(int(level));
+        if (addr == 0) continue;
+        const u32 bufw = st_.textureBufWidth(int(level));
+        const u32 w = st_.textureWidth(int(level)), h = st_.textureHeight(int(level));
+        // §3.2: bpp·(bufw·h + max(0, w − bufw))/8, cut at the end of valid memory.
+        const u64 texels = u64(bufw) * h + (w > bufw ? w - bufw : 0);
+        const u32 want = u32(std::min<u64>(texels * bits / 8, 0x7FFFFFFF));
+        const u32 size = mem_.validSize(addr, want);
+        const u8* data = size ? mem_.ptr(addr, size) : nullptr;
+        if (Memory::isVram(addr)) {
+            const u32 rawBufw = st_.TBW_width(int(level));
+            if (overlapsDrawn(addr, want)) {
+                // Pixels drawn by the GE in this recording: header only, "drawn" | "unchanged"
+                // (| "target"), so players keep what they rendered (ppdmp-format.md §3.3).
+                u32 flags = 4 | 2 | (isTarget(addr) ? 1 : 0);
+                out_.framebufTexture(int(level), addr, rawBufw, flags, nullptr, 0);
+            } else {
+                out_.framebufTexture(int(level), addr, rawBufw, 0, data, size);
+            }
+        } else {
+            if (size < want) warnings_.push_back("texture level reaches past the end of memory");
+            out_.texture(int(level), data, size);
+        }
+    }
+}
+
+void DumpRecorder::recordClut(u32 word) {
+    flushBlock();
+    const u32 arg = word & 0xFFFFFF;
+    // §3.8: NP blocks of 32 bytes; (arg & 0x7F) == 0x40 counts as 64; palette RAM is 1024 bytes.
+    u32 blocks = (arg & 0x7F) == 0x40 ? 64 : (arg & 0x3F);
+    const u32 want = std::min<u32>(blocks * 32, 1024);
+    const u32 addr = st_.clutAddr();
+    const u32 size = mem_.validSize(addr, want);
+    if (want > 0) {
+        if (Memory::isVram(addr) && overlapsDrawn(addr, want)) {
+            // A palette drawn by the GE in this recording: its bytes are only known to a renderer.
+            // No CLUT record: the CBP/CBW words stay as recorded (VRAM CLUT addresses are kept,
+            // ppdmp-format.md §6.4), so the player's CLOAD reads the pixels it rendered.
+        } else {
+            if (Memory::isVram(addr)) out_.clutAddr(addr, 0);
+            out_.clut(size ? mem_.ptr(addr, size) : nullptr, size);
+        }
+    }
+    st_.regs[GE_CMD_CLOAD] = word;
+    block_.push_back(word);
+    ++kicks_;
+}
+
+bool DumpRecorder::recordTransfer(u32 word) {
+    const u32 dst = st_.transferDstAddr();
+    if (!Memory::isVram(dst)) {
+        // PPSSPP records only transfers into VRAM; the XSTART word itself is dropped (§3.2).
+        warnings_.push_back("transfer to RAM dropped from the dump");
+        return false;
+    }
+    const u32 bpp = (word & 1) ? 4 : 2;
+    const u32 w = st_.XSIZE_w1() + 1, h = st_.XSIZE_h1() + 1;
+    const u32 sx = st_.XPOS1_x(), sy = st_.XPOS1_y();
+    const u32 src = st_.transferSrcAddr(), srcStride = st_.transferSrcStride();
+    // §3.2: bytes from the source base up to the last pixel used.
+    const u32 want = ((sy + h - 1) * srcStride + sx + w) * bpp;
+    flushBlock();
+    if (Memory::isVram(src) && overlapsDrawn(src, want)) {
+        // The source pixels were drawn by the GE in this recording and only a renderer knows
+        // them. Without a TRANSFERSRC record the XBP1/XBW1 words stay as recorded (they point
+        // into VRAM), so players copy what they rendered (ppdmp-format.md §6.4).
+    } else {
+        const u32 size = mem_.validSize(src, want);
+        if (size < want) warnings_.push_back("transfer source reaches past the end of memory");
+        out_.transferSrc(size ? mem_.ptr(src, size) : nullptr, size);
+    }
+    st_.regs[GE_CMD_XSTART] = word;
+    block_.push_back(word);
+    ++kicks_;
+    // The destination rows now hold GE-written pixels.
+    const u32 dstStride = st_.transferDstStride();
+    const u32 dstBegin = dst + (st_.XPOS2_y() * dstStride + st_.XPOS2_x()) * bpp;
+    drawn_.push_back({canonical(dstBegin), canonical(dstBegin) + ((h - 1) * dstStride + w) * bpp});
+    return true;
+}
+
+void DumpRecorder::markDrawnBuffers(bool depthWritten) {
+    // Conservative extent: every row up to the scissor's bottom edge (§8.6: the scissor always limits drawing).
+    const u32 rows = st_.SCISSOR2_y() + 1;
+    const u32 bpp = st_.FPF_format() == GE_FORMAT_8888 ? 4 : 2;
+    const u32 fb = canonical(st_.framebufAddr());
+    drawn_.push_back({fb, fb + rows * std::max<u32>(st_.framebufStride(), 1) * bpp});
+    if (std::find(targets_.begin(), targets_.end(), fb) == targets_.end()) targets_.push_back(fb);
+    if (depthWritten) {
+        const u32 zb = canonical(st_.depthbufAddr());
+        drawn_.push_back({zb, zb + rows * std::max<u32>(st_.depthbufStride(), 1) * 2});
+        if (std::find(targets_.begin(), targets_.end(), zb) == targets_.end()) targets_.push_back(zb);
+    }
+    // Keep the list short: merge ranges that touch.
+    std::sort(drawn_.begin(), drawn_.end(), [](const Range& a, const Range& b) { return a.begin < b.begin; });
+    std::vector<Range> merged;
+    for (const Range& r : drawn_) {
+        if (!merged.empty() && r.begin <= merged.back().end) merged.back().end = std::max(merged.back().end, r.end);
+        else merged.push_back(r);
+    }
+    drawn_.swap(merged);
+}
+
+bool DumpRecorder::overlapsDrawn(u32 addr, u32 size) const {
+    const u32 b = canonical(addr), e = b + size;
+    for (const Range& r : drawn_)
+        if (b < r.end && r.begin < e) return true;
+    return false;
+}
+
+bool DumpRecorder::isTarget(u32 addr) const {
+    return std::find(targets_.begin(), targets_.end(), canonical(addr)) != targets_.end();
+}
+
+void DumpRecorder::cpuMemcpy(u32 dest, const void* data, u32 size) {
+    if (!Memory::isVram(dest) || size == 0) return;
+    // The copy happens between GE commands: close the open block so players run the list up
+    // to here first (ppdmp-format.md §6.2 MEMCPYDATA).
+    flushBlock();
+    out_.memcpy(dest, data, size);
+    // Bytes written by the CPU are known again: cut them out of the drawn ranges.
+    const u32 b = canonical(dest), e = b + size;
+    std::vector<Range> kept;
+    for (const Range& r : drawn_) {
+        if (r.end <= b || e <= r.begin) {
+            kept.push_back(r);
+            continue;
+        }
+        if (r.begin < b) kept.push_back({r.begin, b});
+        if (e < r.end) kept.push_back({e, r.end});
+    }
+    drawn_.swap(kept);
+}
+
+void DumpRecorder::cpuMemset(u32 dest, u8 value, u32 size) {
+    if (!Memory::isVram(dest) || size == 0) return;
+    flushBlock();
+    out_.memset(dest, value, size);
+    const u32 b = canonical(dest), e = b + size;
+    std::vector<Range> kept;
+    for (const Range& r : drawn_) {
+        if (r.end <= b || e <= r.begin) {
+            kept.push_back(r);
+            continue;
+        }
+        if (r.begin < b) kept.push_back({r.begin, b});
+        if (e < r.end) kept.push_back({e, r.end});
+    }
+    drawn_.swap(kept);
+}
+
+// ---------------------------------------------------------------------------------------------
+// ListBuilder
+
+ListBuilder::ListBuilder(Memory* mem, u32 arenaBase) : mem_(mem), arenaNext_(arenaBase), arenaEnd_(0) {
+    if (mem_) arenaEnd_ = Memory::kRamBase + mem_->ramSize();
+}
+
+u32 ListBuilder::alloc(u32 size, u32 align) {
+    if (!mem_ || align == 0 || (align & (align - 1))) return 0;
+    const u64 at = (u64(arenaNext_) + align - 1) & ~u64(align - 1);
+    if (at + size > arenaEnd_ || !mem_->valid(u32(at), std::max<u32>(size, 1))) return 0;
+    arenaNext_ = u32(at + size);
+    return u32(at);
+}
+
+u32 ListBuilder::place(const void* data, u32 size, u32 align) {
+    const u32 at = alloc(size, align);
+    if (!at) return 0;
+    if (size && !mem_->write(at, data, size)) return 0;
+    return at;
+}
+
+bool ListBuilder::upload(u32 addr, const void* data, u32 size) {
+    if (!mem_ || !mem_->write(addr, data, size)) return false;
+    if (rec_) rec_->cpuMemcpy(addr, data, size);
+    return true;
+}
+
+bool ListBuilder::uploadFill(u32 addr, u8 value, u32 size) {
+    if (!mem_ || !mem_->fill(addr, value, size)) return false;
+    if (rec_) rec_->cpuMemset(addr, value, size);
+    return true;
+}
+
+u32 ListBuilder::placeList(u32 align) { return place(words_.data(), u32(words_.size() * 4), std::max<u32>(align, 4)); }
+
+void ListBuilder::raw(u32 word) {
+    words_.push_back(word);
+    if (rec_) rec_->command(word);
+}
+
+void ListBuilder::finish(u32 arg) {
+    cmd(GE_CMD_FINISH, arg);
+    cmd(GE_CMD_END, 0);
+}
+
+void ListBuilder::end(u32 arg) { cmd(GE_CMD_END, arg); }
+
+void ListBuilder::signal(u32 behaviour, u32 arg, u32 endArg) {
+    cmd(GE_CMD_SIGNAL, ((behaviour & 0xFF) << 16) | (arg & 0xFFFF));
+    cmd(GE_CMD_END, endArg);
+}
+
+void ListBuilder::call(u32 addr) {
+    base(addr);
+    cmd(GE_CMD_CALL, addr & 0xFFFFFC);
+}
+
+void ListBuilder::jump(u32 addr) {
+    base(addr);
+    cmd(GE_CMD_JUMP, addr & 0xFFFFFC);
+}
+
+u32 ListBuilder::callList(const ListBuilder& sub) {
+    const u32 at = place(sub.words().data(), u32(sub.words().size() * 4), 16);
+    if (!at) return 0;
+    call(at);
+    if (rec_) {
+        for (u32 w : sub.words()) {
+            const u8 op = u8(w >> 24);
+            if (op == GE_CMD_RET) break;
+            rec_->command(w);
+        }
+    }
+    return at;
+}
+
+void ListBuilder::addressCmd(u8 op, u32 addr) {
+    // sceGuDrawArray: BASE carries address bits 27..24 (ge-reference.md §3.1), then the low 24.
+    cmd(GE_CMD_BASE, (addr >> 8) & 0x0F0000);
+    cmd(op, addr & 0xFFFFFF);
+}
+
+void ListBuilder::drawBuffer(u32 fmt, u32 vramOffset, u32 width) {
+    cmd(GE_CMD_FPF, fmt);
+    cmd(GE_CMD_FBP, vramOffset & 0xFFFFFF);
+    cmd(GE_CMD_FBW, ((vramOffset & 0xFF000000) >> 8) | (width & 0x7FF));
+}
+
+void ListBuilder::depthBuffer(u32 vramOffset, u32 width) {
+    cmd(GE_CMD_ZBP, vramOffset & 0xFFFFFF);
+    cmd(GE_CMD_ZBW, ((vramOffset & 0xFF000000) >> 8) | (width & 0x7FF));
+}
+
+void ListBuilder::viewport(float cx, float cy, float w, float h) {
+    cmdf(GE_CMD_SX, w / 2.f);
+    cmdf(GE_CMD_SY, -h / 2.f);
+    cmdf(GE_CMD_TX, cx);
+    cmdf(GE_CMD_TY, cy);
+}
+
+void ListBuilder::offset(u32 x, u32 y) {
+    cmd(GE_CMD_OFFSETX, (x << 4) & 0xFFFF);
+    cmd(GE_CMD_OFFSETY, (y << 4) & 0xFFFF);
+}
+
+void ListBuilder::depthRange(u32 nearZ, u32 farZ) {
+    // sceGuDepthRange (ge-reference.md §3.5): integer midpoint, SZ = mid − near, TZ = mid.
+    const u32 mid = (nearZ + farZ) >> 1;
+    cmdf(GE_CMD_SZ, float(mid) - float(nearZ));
+    cmdf(GE_CMD_TZ, float(mid));
+    cmd(GE_CMD_MINZ, std::min(nearZ, farZ) & 0xFFFF);
+    cmd(GE_CMD_MAXZ, std::max(nearZ, farZ) & 0xFFFF);
+}
+
+void ListBuilder::scissor(u32 x1, u32 y1, u32 x2, u32 y2) {
+    sx1_ = x1;
+    sy1_ = y1;
+    sx2_ = x2;
+    sy2_ = y2;
+    cmd(GE_CMD_SCISSOR1, (y1 & 0x3FF) << 10 | (x1 & 0x3FF));
+    cmd(GE_CMD_SCISSOR2, ((y2 - 1) & 0x3FF) << 10 | ((x2 - 1) & 0x3FF));
+}
+
+void ListBuilder::region(u32 x, u32 y, u32 w, u32 h) {
+    cmd(GE_CMD_REGION1, (y & 0x3FF) << 10 | (x & 0x3FF));
+    cmd(GE_CMD_REGION2, ((y + h - 1) & 0x3FF) << 10 | ((x + w - 1) & 0x3FF));
+}
+
+void ListBuilder::clear(u32 flags, u32 color, u16 depth, u8 stencil) {
+    // sceGuClear: 64-pixel-wide through-mode rectangles, 8888 colour + 16-bit position.
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    std::vector<BuildVertex> v;
+    const u32 col = (color & 0xFFFFFF) | (u32(stencil) << 24);
+    for (u32 x = sx1_; x < sx2_; x += 64) {
+        BuildVertex a, b;
+        a.color = b.color = col;
+        a.x = float(x);
+        a.y = float(sy1_);
+        b.x = float(std::min(x + 64, sx2_));
+        b.y = float(sy2_);
+        a.z = b.z = float(depth);
+        v.push_back(a);
+        v.push_back(b);
+    }
+    const std::vector<u8> data = packVertices(vtype, v.data(), u32(v.size()));
+    cmd(GE_CMD_CMODE, ((flags & 7) << 8) | 1);
+    drawArrayData(GE_PRIM_RECTANGLES, vtype, u32(v.size()), nullptr, data.data());
+    cmd(GE_CMD_CMODE, 0);
+}
+
+void ListBuilder::setMatrix(GeMatrix kind, const float m[16]) {
+    if (kind == GeMatrix::Proj) {
+        cmd(GE_CMD_PROJN, 0);
+        for (int k = 0; k < 16; ++k) cmdf(GE_CMD_PROJD, m[k]);
+        return;
+    }
+    float e[12];
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 3; ++row) e[col * 3 + row] = m[col * 4 + row];
+    setMatrix3x4(kind, e);
+}
+
+void ListBuilder::setMatrix3x4(GeMatrix kind, const float m[12]) {
+    u8 num = GE_CMD_WORLDN, data = GE_CMD_WORLDD;
+    switch (kind) {
+    case GeMatrix::World: break;
+    case GeMatrix::View: num = GE_CMD_VIEWN; data = GE_CMD_VIEWD; break;
+    case GeMatrix::TexGen: num = GE_CMD_TGENN; data = GE_CMD_TGEND; break;
+    case GeMatrix::Proj: {
+        // A 3×4 given for the projection: complete it with the row (0, 0, 0, 1).
+        float p[16];
+        for (int col = 0; col < 4; ++col) {
+            for (int row = 0; row < 3; ++row) p[col * 4 + row] = m[col * 3 + row];
+            p[col * 4 + 3] = col == 3 ? 1.f : 0.f;
+        }
+        setMatrix(GeMatrix::Proj, p);
+        return;
+    }
+    }
+    cmd(num, 0);
+    for (int k = 0; k < 12; ++k) cmdf(data, m[k]);
+}
+
+void ListBuilder::setBoneMatrix(u32 i, const float m[12]) {
+    cmd(GE_CMD_BONEN, (12 * (i & 7)) & 0x7F);
+    for (int k = 0; k < 12; ++k) cmdf(GE_CMD_BONED, m[k]);
+}
+
+void ListBuilder::setTexture(u32 level, u32 addr, u32 w, u32 h, u32 bufw) {
+    level &= 7;
+    cmd(u8(GE_CMD_TBP0 + level), addr & 0xFFFFFF);
+    cmd(u8(GE_CMD_TBW0 + level), ((addr >> 8) & 0x0F0000) | (bufw & 0x7FF));
+    cmd(u8(GE_CMD_TSIZE0 + level), (log2Floor(h) << 8) | log2Floor(w));
+    texFlush();
+}
+
+void ListBuilder::texMode(u32 format, u32 maxLevel, bool swizzle, bool multiClut) {
+    cmd(GE_CMD_TMODE, ((maxLevel & 7) << 16) | (u32(multiClut) << 8) | u32(swizzle));
+    cmd(GE_CMD_TPF, format & 0xF);
+    texFlush();
+}
+
+void ListBuilder::texFunc(u32 func, bool rgba, bool doubling) {
+    cmd(GE_CMD_TFUNC, (u32(doubling) << 16) | (u32(rgba) << 8) | (func & 7));
+}
+
+void ListBuilder::texLevelMode(u32 mode, float bias) {
+    int offl = int(bias * 16.f);  // truncation, as the SDK
+    offl = std::clamp(offl, -128, 127);
+    cmd(GE_CMD_TLEVEL, (u32(offl & 0xFF) << 16) | (mode & 3));
+}
+
+void ListBuilder::texScale(float su, float sv) {
+    cmdf(GE_CMD_SU, su);
+    cmdf(GE_CMD_SV, sv);
+}
+
+void ListBuilder::texOffset(float tu, float tv) {
+    cmdf(GE_CMD_TU, tu);
+    cmdf(GE_CMD_TV, tv);
+}
+
+void ListBuilder::clutMode(u32 fmt, u32 shift, u32 mask, u32 start) {
+    cmd(GE_CMD_CLUT, ((start & 0x1F) << 16) | ((mask & 0xFF) << 8) | ((shift & 0x1F) << 2) | (fmt & 3));
+}
+
+void ListBuilder::clutLoad(u32 addr, u32 blocks) {
+    cmd(GE_CMD_CBP, addr & 0xFFFFFF);
+    cmd(GE_CMD_CBW, (addr >> 8) & 0x0F0000);
+    cmd(GE_CMD_CLOAD, blocks & 0x7F);
+}
+
+void ListBuilder::blendFunc(u32 eq, u32 a, u32 b, u32 fixA, u32 fixB) {
+    cmd(GE_CMD_BLEND, ((eq & 7) << 8) | ((b & 0xF) << 4) | (a & 0xF));
+    cmd(GE_CMD_FIXA, fixA);
+    cmd(GE_CMD_FIXB, fixB);
+}
+
+void ListBuilder::colorFunc(u32 func, u32 ref, u32 mask) {
+    cmd(GE_CMD_CTEST, func & 3);
+    cmd(GE_CMD_CREF, ref);
+    cmd(GE_CMD_CMSK, mask);
+}
+
+void ListBuilder::pixelMask(u32 rgbKeep, u32 alphaKeep) {
+    cmd(GE_CMD_PMSK1, rgbKeep);
+    cmd(GE_CMD_PMSK2, alphaKeep & 0xFF);
+}
+
+void ListBuilder::setDither(const int m[16]) {
+    for (int row = 0; row < 4; ++row) {
+        u32 v = 0;
+        for (int col = 0; col < 4; ++col) v |= u32(m[row * 4 + col] & 0xF) << (4 * col);
+        cmd(u8(GE_CMD_DTTH1 + row), v);
+    }
+}
+
+void ListBuilder::light(u32 n, u32 type, u32 comps, const float pos[3]) {
+    n &= 3;
+    cmdf(u8(GE_CMD_LX0 + 3 * n), pos[0]);
+    cmdf(u8(GE_CMD_LY0 + 3 * n), pos[1]);
+    cmdf(u8(GE_CMD_LZ0 + 3 * n), pos[2]);
+    cmd(u8(GE_CMD_LTYPE0 + n), ((type & 3) << 8) | (comps & 3));
+}
+
+void ListBuilder::lightColor(u32 n, u32 components, u32 rgb) {
+    n &= 3;
+    if (components & LIGHT_AMBIENT) cmd(u8(GE_CMD_LAC0 + 3 * n), rgb);
+    if (components & LIGHT_DIFFUSE) cmd(u8(GE_CMD_LDC0 + 3 * n), rgb);
+    if (components & LIGHT_SPECULAR) cmd(u8(GE_CMD_LSC0 + 3 * n), rgb);
+}
+
+void ListBuilder::lightAtt(u32 n, float a, float b, float c) {
+    n &= 3;
+    cmdf(u8(GE_CMD_LKA0 + 3 * n), a);
+    cmdf(u8(GE_CMD_LKB0 + 3 * n), b);
+    cmdf(u8(GE_CMD_LKC0 + 3 * n), c);
+}
+
+void ListBuilder::lightSpot(u32 n, const float dir[3], float exponent, float cutoff) {
+    n &= 3;
+    cmdf(u8(GE_CMD_LDX0 + 3 * n), dir[0]);
+    cmdf(u8(GE_CMD_LDY0 + 3 * n), dir[1]);
+    cmdf(u8(GE_CMD_LDZ0 + 3 * n), dir[2]);
+    cmdf(u8(GE_CMD_LKS0 + n), exponent);
+    cmdf(u8(GE_CMD_LKO0 + n), cutoff);
+}
+
+void ListBuilder::ambient(u32 abgr) {
+    cmd(GE_CMD_AC, abgr & 0xFFFFFF);
+    cmd(GE_CMD_AA, abgr >> 24);
+}
+
+void ListBuilder::materialAmbient(u32 abgr) {
+    cmd(GE_CMD_MAC, abgr & 0xFFFFFF);
+    cmd(GE_CMD_MAA, abgr >> 24);
+}
+
+void ListBuilder::fog(float nearZ, float farZ, u32 rgb) {
+    float dist = farZ - nearZ;
+    if (dist != 0.f) dist = 1.f / dist;
+    cmd(GE_CMD_FC, rgb);
+    cmdf(GE_CMD_FOG1, farZ);
+    cmdf(GE_CMD_FOG2, dist);
+}
+
+void ListBuilder::drawArray(u32 prim, u32 vtype, u32 count, u32 indexAddr, u32 vertexAddr) {
+    if (vtype) setVertexType(vtype);
+    if (indexAddr) addressCmd(GE_CMD_IADR, indexAddr);
+    if (vertexAddr) addressCmd(GE_CMD_VADR, vertexAddr);
+    cmd(GE_CMD_PRIM, ((prim & 7) << 16) | (count & 0xFFFF));
+}
+
+u32 ListBuilder::indexBytes(u32 vtype, u32 count) const {
+    static constexpr u32 sizes[4] = {0, 1, 2, 4};
+    return sizes[(vtype >> 11) & 3] * count;
+}
+
+void ListBuilder::drawArrayData(u32 prim, u32 vtype, u32 count, const void* indices, const void* vertices) {
+    u32 idxAddr = 0, vtxAddr = 0;
+    const u32 stride = VertexLayout::fromVtype(vtype).size * (((vtype >> 18) & 7) + 1);
+    u32 vertexCount = count;
+    if (indices && ((vtype >> 11) & 3)) {
+        const u32 isz = indexBytes(vtype, 1);
+        idxAddr = place(indices, indexBytes(vtype, count), 4);
+        // Indexed: the vertex array must cover the largest index.
+        u32 maxIndex = 0;
+        const u8* p = static_cast<const u8*>(indices);
+        for (u32 i = 0; i < count; ++i) {
+            const u8* q = p + size_t(i) * isz;
+            maxIndex = std::max<u32>(maxIndex, isz == 1 ? q[0] : isz == 2 ? readLE16(q) : readLE32(q));
+        }
+        vertexCount = maxIndex + 1;
+    }
+    if (vertices) vtxAddr = place(vertices, vertexCount * stride, 4);
+    drawArray(prim, vtype, count, idxAddr, vtxAddr);
+}
+
+void ListBuilder::drawBezier(u32 vtype, u32 ucount, u32 vcount, u32 indexAddr, u32 vertexAddr) {
+    if (vtype) setVertexType(vtype);
+    if (indexAddr) addressCmd(GE_CMD_IADR, indexAddr);
+    if (vertexAddr) addressCmd(GE_CMD_VADR, vertexAddr);
+    cmd(GE_CMD_BEZIER, ((vcount & 0xFF) << 8) | (ucount & 0xFF));
+}
+
+void ListBuilder::drawSpline(u32 vtype, u32 ucount, u32 vcount, u32 uedge, u32 vedge, u32 indexAddr, u32 vertexAddr) {
+    if (vtype) setVertexType(vtype);
+    if (indexAddr) addressCmd(GE_CMD_IADR, indexAddr);
+    if (vertexAddr) addressCmd(GE_CMD_VADR, vertexAddr);
+    cmd(GE_CMD_SPLINE, ((vedge & 3) << 18) | ((uedge & 3) << 16) | ((vcount & 0xFF) << 8) | (ucount & 0xFF));
+}
+
+void ListBuilder::copyImage(u32 psm, u32 sx, u32 sy, u32 width, u32 height, u32 srcStride, u32 src, u32 dx, u32 dy,
+                            u32 dstStride, u32 dst) {
+    // sceGuCopyImage (ge-reference.md §3.11): XBW carries address bits 31..24 in bits 23..16.
+    cmd(GE_CMD_XBP1, src & 0xFFFFFF);
+    cmd(GE_CMD_XBW1, ((src & 0xFF000000) >> 8) | (srcStride & 0x7FF));
+    cmd(GE_CMD_XPOS1, (sy & 0x3FF) << 10 | (sx & 0x3FF));
+    cmd(GE_CMD_XBP2, dst & 0xFFFFFF);
+    cmd(GE_CMD_XBW2, ((dst & 0xFF000000) >> 8) | (dstStride & 0x7FF));
+    cmd(GE_CMD_XPOS2, (dy & 0x3FF) << 10 | (dx & 0x3FF));
+    cmd(GE_CMD_XSIZE, ((height - 1) & 0x3FF) << 10 | ((width - 1) & 0x3FF));
+    cmd(GE_CMD_XSTART, psm == GE_FORMAT_8888 ? 1 : 0);
+}
+
+}  // namespace ge
