@@ -1,0 +1,148 @@
+// The ge2gl CLI as users and scripts drive it: outputs, file formats, exit codes, error lines.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "hle/dump/player.h"
+#include "tools/lib/image.h"
+
+using namespace ge;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int code = -1;
+    std::string out;
+};
+
+std::string cli() { return std::string(GE2GL_BINARY_DIR) + "/ge2gl"; }
+std::string scene(const char* name) { return std::string(GE2GL_SOURCE_DIR) + "/dumps/" + name + ".ppdmp"; }
+
+CliRun run(const std::string& args, bool withStderr = true) {
+    CliRun r;
+    std::string cmd = cli() + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
+    FILE* p = popen(cmd.c_str(), "r");
+    if (!p) return r;
+    std::array<char, 4096> buf;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
+    int status = pclose(p);
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+fs::path tmpDir() {
+    fs::path d = fs::temp_directory_path() / ("ge2gl_cli_test_" + std::to_string(::getpid()));
+    fs::create_directories(d);
+    return d;
+}
+
+size_t countLines(const std::string& s) { return size_t(std::count(s.begin(), s.end(), '\n')); }
+
+TEST(Cli, InfoReportsCounts) {
+    CliRun r = run("info " + scene("lit_textured_skinned"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("version:   6"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("draws:"), std::string::npos);
+    EXPECT_NE(r.out.find("INIT"), std::string::npos);
+}
+
+TEST(Cli, DisasmPrintsEveryCommand) {
+    dump::Dump d;
+    std::string err;
+    ASSERT_TRUE(dump::loadDump(scene("blend_stencil_logic"), d, err)) << err;
+    const dump::DumpSummary s = dump::summarize(d);
+    CliRun r = run("disasm " + scene("blend_stencil_logic"), false);
+    ASSERT_EQ(r.code, 0);
+    // One line per command plus one comment line per non-REGISTERS record.
+    EXPECT_EQ(countLines(r.out), s.commands + d.records.size() - s.recordsByType[dump::REGISTERS]);
+    EXPECT_NE(r.out.find("PRIM count="), std::string::npos);
+}
+
+TEST(Cli, RenderWritesPngDepthAndVram) {
+    fs::path t = tmpDir();
+    CliRun r = run("render " + scene("lit_textured_skinned") + " --backend soft -o " + (t / "f.png").string() + " --depth-out " +
+                (t / "d.bin").string() + " --vram-out " + (t / "v.bin").string() + " --stats");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("draws:"), std::string::npos);
+    tools::Image img;
+    std::string err;
+    ASSERT_TRUE(tools::readImage((t / "f.png").string(), img, err)) << err;
+    EXPECT_EQ(img.width, 480);
+    EXPECT_EQ(img.height, 272);
+    EXPECT_EQ(fs::file_size(t / "d.bin"), 8u + 480 * 272 * 2);
+    EXPECT_EQ(fs::file_size(t / "v.bin"), 2u * 1024 * 1024);
+    std::ifstream f(t / "d.bin", std::ios::binary);
+    u8 hdr[8];
+    f.read(reinterpret_cast<char*>(hdr), 8);
+    EXPECT_EQ(readLE32(hdr), 480u);
+    EXPECT_EQ(readLE32(hdr + 4), 272u);
+    // The picture is not blank.
+    size_t nonBlack = 0;
+    for (u32 p : img.rgba) nonBlack += (p & 0xFFFFFF) != 0;
+    EXPECT_GT(nonBlack, 1000u);
+    fs::remove_all(t);
+}
+
+TEST(Cli, ReplayEndStopsEarly) {
+    fs::path t = tmpDir();
+    CliRun a = run("render " + scene("blend_stencil_logic") + " --backend soft -o " + (t / "a.png").string() + " --replay-end 1");
+    CliRun b = run("render " + scene("blend_stencil_logic") + " --backend soft -o " + (t / "b.png").string());
+    ASSERT_EQ(a.code, 0) << a.out;
+    ASSERT_EQ(b.code, 0) << b.out;
+    tools::Image ia, ib;
+    std::string err;
+    ASSERT_TRUE(tools::readImage((t / "a.png").string(), ia, err));
+    ASSERT_TRUE(tools::readImage((t / "b.png").string(), ib, err));
+    EXPECT_GT(tools::mseRGB(ia, ib), 0.0);
+    fs::remove_all(t);
+}
+
+TEST(Cli, CompareAgainstItselfIsExactAndMaxMseFails) {
+    fs::path t = tmpDir();
+    CliRun r = run("compare " + scene("render_to_texture") + " --backend soft --ref-backend soft --json " + (t / "r.json").string());
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("0.0000"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(t / "r.json"));
+    // Against a reference directory of the wrong pictures, --max-mse makes the exit code non-zero.
+    fs::create_directories(t / "refs");
+    tools::Image white;
+    white.width = 480, white.height = 272;
+    white.rgba.assign(480 * 272, 0xFFFFFFFFu);
+    std::string err;
+    ASSERT_TRUE(tools::writePng((t / "refs" / "render_to_texture-soft.png").string(), white, err)) << err;
+    CliRun bad = run("compare " + scene("render_to_texture") + " --backend soft --ref-dir " + (t / "refs").string() +
+                  " --max-mse 1 --diff-dir " + (t / "diff").string());
+    EXPECT_NE(bad.code, 0) << bad.out;
+    EXPECT_TRUE(fs::exists(t / "diff" / "render_to_texture-diff.png"));
+    fs::remove_all(t);
+}
+
+TEST(Cli, ErrorsAreOneLineAndNonZero) {
+    CliRun missing = run("info /nonexistent/file.ppdmp");
+    EXPECT_NE(missing.code, 0);
+    EXPECT_EQ(countLines(missing.out), 1u) << missing.out;
+    EXPECT_EQ(missing.out.rfind("ge2gl: ", 0), 0u) << missing.out;
+
+    fs::path t = tmpDir();
+    std::ofstream(t / "junk.ppdmp") << "PPSSPPGE\x06garbage";
+    CliRun corrupt = run("render " + (t / "junk.ppdmp").string() + " --backend soft -o " + (t / "x.png").string());
+    EXPECT_NE(corrupt.code, 0);
+    EXPECT_EQ(countLines(corrupt.out), 1u) << corrupt.out;
+
+    CliRun backend = run("render " + scene("bezier_spline") + " --backend vulkan -o " + (t / "x.png").string());
+    EXPECT_NE(backend.code, 0);
+    EXPECT_EQ(countLines(backend.out), 1u) << backend.out;
+    CliRun noArgs = run("");
+    EXPECT_NE(noArgs.code, 0);
+    fs::remove_all(t);
+}
+
+}  // namespace
