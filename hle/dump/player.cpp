@@ -19,8 +19,8 @@ u32 cmd(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
 
 class Replayer {
 public:
-    Replayer(const Dump& d, GeEngine& eng, const ReplayOptions& opt, ReplayResult& res)
-        : d_(d), eng_(eng), mem_(eng.memory()), opt_(opt), res_(res) {}
+    Replayer(const Dump& d, ReplayTarget& t, const ReplayOptions& opt, ReplayResult& res)
+        : d_(d), t_(t), opt_(opt), res_(res) {}
 
     bool play(std::string& err);
 
@@ -30,8 +30,14 @@ private:
     u32 place(const Record& r, u32 align);
     void appendWords(const std::vector<u32>& words);
     void runSoFar();
-    void hostWrite(u32 addr, const u8* data, u32 size);
-    void hostFill(u32 addr, u8 value, u32 size);
+    void hostWrite(u32 addr, const u8* data, u32 size) {
+        if (t_.write(addr, data, size) < size) warn("a VRAM copy in the dump runs past the end of memory");
+    }
+    void writeWord(u32 addr, u32 w) {
+        u8 b[4];
+        writeLE32(b, w);
+        t_.write(addr, b, 4);
+    }
     void queueBaseFor(u32 a) {
         if ((a >> 24) != lastBase_) {
             pending_.push_back(cmd(GE_CMD_BASE, (a >> 8) & 0xFF0000));
@@ -43,8 +49,7 @@ private:
     }
 
     const Dump& d_;
-    GeEngine& eng_;
-    Memory& mem_;
+    ReplayTarget& t_;
     const ReplayOptions& opt_;
     ReplayResult& res_;
 
@@ -66,7 +71,7 @@ u32 Replayer::place(const Record& r, u32 align) {
     if (!p) return 0;
     auto key = std::make_tuple(r.ptr, r.size, align);
     if (auto it = placed_.find(key); it != placed_.end()) return it->second;
-    const u64 ramEnd = u64(Memory::kRamBase) + mem_.ramSize();
+    const u64 ramEnd = u64(Memory::kRamBase) + t_.ramSize();
     u32 a = (arenaPos_ + align - 1) & ~(align - 1);
     if (u64(a) + r.size > ramEnd) {
         // Wrap around: everything placed before has been consumed by the list already run
@@ -75,8 +80,7 @@ u32 Replayer::place(const Record& r, u32 align) {
         a = kArenaBase;
         if (u64(a) + r.size > ramEnd) return 0;
     }
-    mem_.write(a, p, r.size);
-    eng_.renderer()->memoryWritten(a, r.size);
+    t_.write(a, p, r.size);
     arenaPos_ = a + r.size;
     placed_[key] = a;
     return a;
@@ -88,17 +92,18 @@ void Replayer::appendWords(const std::vector<u32>& words) {
         // Room for a chunk plus the BASE + JUMP that wrap the buffer.
         u32 room = (kListEnd - writePos_) / 4;
         if (room <= 2) {
-            mem_.write32(writePos_, cmd(GE_CMD_BASE, (kListBase >> 8) & 0xFF0000));
-            mem_.write32(writePos_ + 4, cmd(GE_CMD_JUMP, kListBase & 0xFFFFFF));
+            writeWord(writePos_, cmd(GE_CMD_BASE, (kListBase >> 8) & 0xFF0000));
+            writeWord(writePos_ + 4, cmd(GE_CMD_JUMP, kListBase & 0xFFFFFF));
             writePos_ = kListBase;
             lastBase_ = kListBase >> 24;
             // Let the GE follow the jump before the start of the buffer is overwritten.
-            eng_.setStall(writePos_);
-            eng_.run(16);
+            t_.runTo(writePos_, 16);
             continue;
         }
         size_t n = std::min<size_t>(words.size() - i, room - 2);
-        for (size_t k = 0; k < n; ++k) mem_.write32(writePos_ + u32(4 * k), words[i + k]);
+        std::vector<u8> bytes(4 * n);
+        for (size_t k = 0; k < n; ++k) writeLE32(&bytes[4 * k], words[i + k]);
+        t_.write(writePos_, bytes.data(), u32(bytes.size()));
         writePos_ += u32(4 * n);
         i += n;
         if (i < words.size()) runSoFar();
@@ -106,36 +111,18 @@ void Replayer::appendWords(const std::vector<u32>& words) {
 }
 
 void Replayer::runSoFar() {
-    eng_.setStall(writePos_);
     // Blocks never branch backwards in a sound dump; a generous budget turns a corrupt loop into
     // an error instead of a hang.
-    RunStatus s = eng_.run(u64(kListEnd - kListBase) / 4 * 4 + 4096);
+    RunStatus s = t_.runTo(writePos_, u64(kListEnd - kListBase) / 4 * 4 + 4096);
     if (s == RunStatus::Stalled) return;
     ++res_.listErrors;
     char buf[160];
     std::snprintf(buf, sizeof buf, "display list stopped (%s%s%s) before the end of the recorded commands",
                   runStatusName(s), s == RunStatus::Error ? ": " : "",
-                  s == RunStatus::Error ? eng_.lastErrorMessage().c_str() : "");
+                  s == RunStatus::Error ? t_.lastError().c_str() : "");
     warn(buf);
     // Restart the list where the player writes next, keeping all state.
-    eng_.startList(writePos_, writePos_);
-}
-
-void Replayer::hostWrite(u32 addr, const u8* data, u32 size) {
-    u32 n = mem_.validSize(addr, size);
-    if (n < size) warn("a VRAM copy in the dump runs past the end of memory");
-    if (!n) return;
-    eng_.renderer()->syncMemoryForRead(addr, n);
-    mem_.write(addr, data, n);
-    eng_.renderer()->memoryWritten(addr, n);
-}
-
-void Replayer::hostFill(u32 addr, u8 value, u32 size) {
-    u32 n = mem_.validSize(addr, size);
-    if (!n) return;
-    eng_.renderer()->syncMemoryForRead(addr, n);
-    mem_.fill(addr, value, n);
-    eng_.renderer()->memoryWritten(addr, n);
+    t_.startList(writePos_, writePos_);
 }
 
 bool Replayer::play(std::string& err) {
@@ -143,14 +130,22 @@ bool Replayer::play(std::string& err) {
         err = "dump does not start with an INIT record";
         return false;
     }
-    // §6.1: the list starts with one NOP, stalled at its end.
-    mem_.write32(writePos_, 0);
-    writePos_ += 4;
-    eng_.startList(kListBase, writePos_);
-    eng_.run(16);
+    // The first INIT is applied before the list starts, as a game restores a context before it
+    // enqueues (sceGeRestoreContext fails while the GE is drawing).
+    bool started = false;
+    auto startOnce = [&] {
+        if (started) return;
+        started = true;
+        // §6.1: the list starts with one NOP, stalled at its end.
+        writeWord(writePos_, 0);
+        writePos_ += 4;
+        t_.startList(kListBase, writePos_);
+        t_.runTo(writePos_, 16);
+    };
 
     const Record* prev = nullptr;
     for (size_t ri = 0; ri < d_.records.size() && !stopped_; ++ri) {
+        if (ri > 0) startOnce();
         const Record& r = d_.records[ri];
         ++res_.records;
         const u8* p = d_.payload(r);
@@ -183,9 +178,9 @@ bool Replayer::play(std::string& err) {
                 u32 ctx[512] = {};
                 if (r.size < kInitBytes) warn("short INIT record");
                 std::memcpy(ctx, p, std::min<u32>(r.size, kInitBytes));
-                eng_.loadContext(ctx);
                 // The running list's OFFSET is its own, starting at 0 (§6.1).
-                eng_.state().offsetAddr = 0;
+                ctx[7] = 0;
+                t_.loadContext(ctx);
                 for (int i = 0; i < 8; ++i) lastTex_[i] = lastBufw_[i] = 0;
                 lastBase_ = ~0u;
                 break;
@@ -243,18 +238,13 @@ bool Replayer::play(std::string& err) {
                     hostWrite(clutAddr_, p, r.size);
                     clutAddrPending_ = false;
                 } else {
-                    if (prev && prev->type == INIT) {
-                        // The palette at recording start (newer v6 dumps): load it straight into
-                        // palette RAM, which matches the recording's state (§6.4).
-                        GeState& st = eng_.state();
-                        std::memcpy(st.clut, p, std::min<u32>(r.size, sizeof(st.clut)));
-                        eng_.markDirty(DIRTY_CLUT);
-                        eng_.renderer()->clutLoaded(st);
-                    }
                     u32 a = place(r, 16);
                     if (a) {
                         pending_.push_back(cmd(GE_CMD_CBW, (a >> 8) & 0xFF0000));
                         pending_.push_back(cmd(GE_CMD_CBP, a & 0xFFFFFF));
+                        // The palette at recording start (newer v6 dumps): load it into palette
+                        // RAM, which matches the recording's state (§6.4).
+                        if (prev && prev->type == INIT) pending_.push_back(cmd(GE_CMD_CLOAD, std::min<u32>(r.size / 32, 32)));
                     }
                 }
                 break;
@@ -262,7 +252,7 @@ bool Replayer::play(std::string& err) {
                 u32 a = place(r, 16);
                 runSoFar();
                 if (a) {
-                    const u32 xbw1 = eng_.state().regs[GE_CMD_XBW1];
+                    const u32 xbw1 = t_.readRegister(GE_CMD_XBW1);
                     pending_.push_back(cmd(GE_CMD_XBW1, (xbw1 & 0xFFFF) | ((a >> 8) & 0xFF0000)));
                     pending_.push_back(cmd(GE_CMD_XBP1, a & 0xFFFFFF));
                 }
@@ -271,7 +261,7 @@ bool Replayer::play(std::string& err) {
             case MEMSET: {
                 runSoFar();
                 const u32 dest = d_.payloadWord(r, 0), value = d_.payloadWord(r, 1), size = d_.payloadWord(r, 2);
-                if (Memory::isVram(dest)) hostFill(dest, u8(value), size);
+                if (Memory::isVram(dest)) t_.fill(dest, u8(value), size);
                 break;
             }
             case MEMCPYDEST: memcpyDest_ = d_.payloadWord(r, 0); break;
@@ -281,7 +271,7 @@ bool Replayer::play(std::string& err) {
                 break;
             case EDRAMTRANS:
                 runSoFar();
-                if (!mem_.setEdramTranslation(d_.payloadWord(r, 0))) warn("invalid eDRAM translation value");
+                if (!t_.setEdramTranslation(d_.payloadWord(r, 0))) warn("invalid eDRAM translation value");
                 break;
             case DISPLAY:
                 runSoFar();
@@ -294,27 +284,27 @@ bool Replayer::play(std::string& err) {
                 char buf[64];
                 std::snprintf(buf, sizeof buf, "unknown record type 0x%02x (record %zu)", r.type, ri);
                 err = buf;
-                eng_.renderer()->flushToMemory();
+                t_.finishFrame();
                 return false;
             }
             }
         }
         prev = &r;
     }
+    startOnce();
     // §6.3: finish the list and wait for it.
     std::vector<u32> tail;
     tail.swap(pending_);
     tail.push_back(cmd(GE_CMD_FINISH, 0));
     tail.push_back(cmd(GE_CMD_END, 0));
     appendWords(tail);
-    eng_.setStall(writePos_);
-    RunStatus s = eng_.run(u64(kListEnd - kListBase) / 4 * 4 + 4096);
+    RunStatus s = t_.runTo(writePos_, u64(kListEnd - kListBase) / 4 * 4 + 4096);
     if (s != RunStatus::Completed) {
         ++res_.listErrors;
         warn(std::string("final list ended as '") + runStatusName(s) + "'");
     }
     res_.draws = kicks_;
-    eng_.renderer()->flushToMemory();
+    t_.finishFrame();
     return true;
 }
 
@@ -354,10 +344,35 @@ void displayedFramebuffer(const ReplayResult& r, const GeState& st, u32& addr, u
     if (stride == 0 || stride > 1024) stride = 512;
 }
 
-bool replayDump(const Dump& d, GeEngine& engine, const ReplayOptions& opt, ReplayResult& result, std::string& err) {
+u32 EngineTarget::write(u32 addr, const void* data, u32 size) {
+    Memory& mem = eng_.memory();
+    const u32 n = mem.validSize(addr, size);
+    if (!n) return 0;
+    eng_.renderer()->syncMemoryForRead(addr, n);
+    mem.write(addr, data, n);
+    eng_.renderer()->memoryWritten(addr, n);
+    return n;
+}
+
+u32 EngineTarget::fill(u32 addr, u8 value, u32 size) {
+    Memory& mem = eng_.memory();
+    const u32 n = mem.validSize(addr, size);
+    if (!n) return 0;
+    eng_.renderer()->syncMemoryForRead(addr, n);
+    mem.fill(addr, value, n);
+    eng_.renderer()->memoryWritten(addr, n);
+    return n;
+}
+
+bool replayDump(const Dump& d, ReplayTarget& target, const ReplayOptions& opt, ReplayResult& result, std::string& err) {
     result = ReplayResult{};
-    Replayer r(d, engine, opt, result);
+    Replayer r(d, target, opt, result);
     return r.play(err);
+}
+
+bool replayDump(const Dump& d, GeEngine& engine, const ReplayOptions& opt, ReplayResult& result, std::string& err) {
+    EngineTarget t(engine);
+    return replayDump(d, t, opt, result, err);
 }
 
 }  // namespace ge::dump

@@ -30,6 +30,50 @@ struct ReplayResult {
     std::string warning;            // first non-fatal problem, if any
 };
 
+// What the player drives: a GE plus its memory, as an emulator would see it. replayDump() on a
+// GeEngine uses EngineTarget; the plugin API tests implement it over the C ABI, so both replay the
+// same command stream.
+class ReplayTarget {
+public:
+    virtual ~ReplayTarget() = default;
+    virtual u32 ramSize() const = 0;
+    // A host (CPU/DMA) write into guest memory; returns the bytes written (clipped to valid memory).
+    virtual u32 write(u32 addr, const void* data, u32 size) = 0;
+    virtual u32 fill(u32 addr, u8 value, u32 size) = 0;
+    virtual void loadContext(const u32 ctx[512]) = 0;
+    virtual void startList(u32 pc, u32 stall) = 0;
+    // Moves the stall address and lets the GE run until it stalls, ends or spends the budget.
+    virtual RunStatus runTo(u32 stall, u64 budget) = 0;
+    virtual std::string lastError() = 0;
+    virtual u32 readRegister(u8 op) = 0;
+    virtual bool setEdramTranslation(u32 value) = 0;
+    // The frame is complete: make emulated VRAM hold every pixel drawn.
+    virtual void finishFrame() = 0;
+};
+
+class EngineTarget : public ReplayTarget {
+public:
+    explicit EngineTarget(GeEngine& e) : eng_(e) {}
+    u32 ramSize() const override { return eng_.memory().ramSize(); }
+    u32 write(u32 addr, const void* data, u32 size) override;
+    u32 fill(u32 addr, u8 value, u32 size) override;
+    void loadContext(const u32 ctx[512]) override { eng_.loadContext(ctx); }
+    void startList(u32 pc, u32 stall) override { eng_.startList(pc, stall); }
+    RunStatus runTo(u32 stall, u64 budget) override {
+        eng_.setStall(stall);
+        return eng_.run(budget);
+    }
+    std::string lastError() override { return eng_.lastErrorMessage(); }
+    u32 readRegister(u8 op) override { return eng_.state().regs[op]; }
+    bool setEdramTranslation(u32 v) override { return eng_.memory().setEdramTranslation(v); }
+    void finishFrame() override { eng_.renderer()->flushToMemory(); }
+
+private:
+    GeEngine& eng_;
+};
+
+bool replayDump(const Dump& d, ReplayTarget& target, const ReplayOptions& opt, ReplayResult& result, std::string& err);
+
 // Frame buffer of the result: the last DISPLAY record, else the last frame buffer set (FBP/FBW/FPF).
 void displayedFramebuffer(const ReplayResult& r, const GeState& st, u32& addr, u32& stride, u32& format);
 
