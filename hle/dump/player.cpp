@@ -170,8 +170,11 @@ bool Replayer::play(std::string& err) {
                 lastTex_[fbLevel] = v;
                 lastBufw_[fbLevel] = bufw;
             }
-            // Flag bit 1 ("unchanged VRAM") is trustworthy from version 6 on (§3.3).
-            if (r.size > 16 && !(d_.version >= 6 && (flags & 2))) hostWrite(v, p + 16, r.size - 16);
+            // Flag bit 1 ("unchanged VRAM") is trustworthy from version 6 on (§3.3). Flag bit 0
+            // ("target": a buffer drawn earlier in this recording) is skipped too: both our backends
+            // keep what they drew, as PPSSPP's software renderer does (§6.2), and the recorded bytes
+            // would overwrite the frame with what the recording GPU had at that moment.
+            if (r.size > 16 && !(d_.version >= 6 && (flags & 2)) && !(flags & 1)) hostWrite(v, p + 16, r.size - 16);
         } else {
             switch (r.type) {
             case INIT: {
@@ -235,7 +238,7 @@ bool Replayer::play(std::string& err) {
                 break;
             case CLUT:
                 if (clutAddrPending_) {
-                    hostWrite(clutAddr_, p, r.size);
+                    if (!(clutFlags_ & 1)) hostWrite(clutAddr_, p, r.size);  // same rule as FRAMEBUF
                     clutAddrPending_ = false;
                 } else {
                     u32 a = place(r, 16);

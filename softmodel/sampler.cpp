@@ -1,0 +1,206 @@
+#include "softmodel/sampler.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstring>
+
+namespace ge::soft {
+
+void TexLevel::setSize(u32 wlog, u32 hlog, int sw, int sh) {
+    storedW = std::max(sw, 1);
+    storedH = std::max(sh, 1);
+    wlog = std::min<u32>(wlog, 15);
+    hlog = std::min<u32>(hlog, 15);
+    // Exact powers of two: s·scale equals the reference's (s·w)·256 bit for bit.
+    scaleU = float(1u << wlog) * 256.0f;
+    scaleV = float(1u << hlog) * 256.0f;
+    // Ref §8.10: repeat u & (w − 1) & 511; clamp 0 … min(w, 512) − 1. The stored size bound only
+    // matters if a decoder ever returned fewer texels than the nominal size.
+    wrapMaskU = int(((1u << wlog) - 1) & 511);
+    wrapMaskV = int(((1u << hlog) - 1) & 511);
+    clampMaxU = int(std::min<u32>(1u << wlog, 512) - 1);
+    clampMaxV = int(std::min<u32>(1u << hlog, 512) - 1);
+    if (wrapMaskU > storedW - 1) wrapMaskU = storedW - 1;
+    if (wrapMaskV > storedH - 1) wrapMaskV = storedH - 1;
+    clampMaxU = std::min(clampMaxU, storedW - 1);
+    clampMaxV = std::min(clampMaxV, storedH - 1);
+}
+
+int texLog2x16(float x) {
+    u32 bits;
+    std::memcpy(&bits, &x, 4);
+    // Exponent (8 bits) and the top 4 mantissa bits: 16·(e − 127) + m4; bit 31 (sign) dropped.
+    return int((bits >> 19) & 0xFFF) - 127 * 16;
+}
+
+int levelOfDetail16(const LodParams& p, float lod, float w) {
+    int d;
+    switch (p.mode) {
+    case 0: {
+        // Fragment::lod is the rasteriser's log2 of the texel/pixel ratio, formed the GE's way
+        // (exponent + top mantissa bits of the ratio, raster.cpp texLog2): the 4-bit detail is its
+        // floor in 1/16 steps, i.e. the exponent and the top 4 mantissa bits.
+        const float x16 = lod * 16.0f;
+        d = x16 >= 4096.0f ? 4096 : (x16 > -4096.0f ? int(std::floor(x16)) : -4096);  // NaN → −4096
+        break;
+    }
+    case 2:
+        // Ref §6.6: d = log2(TSLOPE·W) + 1, the +1 measured; formed as log2(2·TSLOPE·W).
+        d = texLog2x16(2.0f * w * p.slope);
+        break;
+    default: d = 0; break;  // constant mode (1, and 3 which behaves as 1)
+    }
+    // Clamp before adding so NaN/inf-derived values cannot overflow.
+    d = std::clamp(d, -4096, 4096);
+    return d + p.bias16;
+}
+
+LevelChoice chooseLevel(const LodParams& p, int detail16) {
+    LevelChoice c;
+    if (detail16 > 0) {
+        c.linear = p.minLinear;
+        if (p.maxLevel > 0) {
+            int l = std::min(detail16, p.maxLevel * 16);
+            if (!p.mipLinear) l += 8;  // nearest level: round at .5
+            c.level = l >> 4;
+            c.frac = p.mipLinear ? (l & 15) : 0;
+        }
+    } else {
+        c.linear = p.magLinear;
+    }
+    return c;
+}
+
+int highestLevelNeeded(const LodParams& p, bool fixedChoice, const LevelChoice& fixed) {
+    if (fixedChoice) return std::min(fixed.level + (fixed.frac ? 1 : 0), 7);
+    return std::clamp(p.maxLevel, 0, 7);
+}
+
+namespace {
+
+// A texel coordinate with 8 fraction bits, truncated toward zero like the float→int conversion
+// of the reference; values outside int range (and NaN) become INT_MIN.
+inline s64 texelFixed(float f) {
+    return (f >= -2147483648.0f && f < 2147483648.0f) ? s64(s32(f)) : s64(INT32_MIN);
+}
+
+template <bool CLAMP>
+inline int addressTexel(s64 u, int mask, int maxIndex) {
+    if constexpr (CLAMP) return u < 0 ? 0 : (u > maxIndex ? maxIndex : int(u));
+    else return int(u & mask);
+}
+
+// Channels spread into four 16-bit lanes so one multiply weights all of them.
+inline u64 spread(u32 c) {
+    u64 x = c;
+    x = (x | x << 16) & 0x0000FFFF0000FFFFull;
+    return (x | x << 8) & 0x00FF00FF00FF00FFull;
+}
+inline u32 compact(u64 x) {
+    x &= 0x00FF00FF00FF00FFull;
+    x = (x | x >> 8) & 0x0000FFFF0000FFFFull;
+    return u32(x | x >> 16);
+}
+
+template <bool CU, bool CV>
+inline u32 nearestT(const TexLevel& lv, float s, float t) {
+    if (!lv.texels) return 0;
+    const int u = addressTexel<CU>(texelFixed(s * lv.scaleU) >> 8, lv.wrapMaskU, lv.clampMaxU);
+    const int v = addressTexel<CV>(texelFixed(t * lv.scaleV) >> 8, lv.wrapMaskV, lv.clampMaxV);
+    return lv.texels[size_t(v) * size_t(lv.storedW) + size_t(u)];
+}
+
+template <bool CU, bool CV>
+inline u32 bilinearT(const TexLevel& lv, float s, float t) {
+    if (!lv.texels) return 0;
+    // Half a texel back (128/256), then 8 integer bits and the top 4 of the fraction.
+    const s64 bu = texelFixed(s * lv.scaleU) - 128;
+    const s64 bv = texelFixed(t * lv.scaleV) - 128;
+    const int fu = int((bu >> 4) & 15), fv = int((bv >> 4) & 15);
+    const s64 u0 = bu >> 8, v0 = bv >> 8;
+    const int ua = addressTexel<CU>(u0, lv.wrapMaskU, lv.clampMaxU);
+    const int ub = addressTexel<CU>(u0 + 1, lv.wrapMaskU, lv.clampMaxU);
+    const u32* rowA = lv.texels + size_t(addressTexel<CV>(v0, lv.wrapMaskV, lv.clampMaxV)) * size_t(lv.storedW);
+    const u32* rowB = lv.texels + size_t(addressTexel<CV>(v0 + 1, lv.wrapMaskV, lv.clampMaxV)) * size_t(lv.storedW);
+    const u64 sum = spread(rowA[ua]) * u64((16 - fu) * (16 - fv)) + spread(rowA[ub]) * u64(fu * (16 - fv)) +
+                    spread(rowB[ua]) * u64((16 - fu) * fv) + spread(rowB[ub]) * u64(fu * fv);
+    return compact(sum >> 8);
+}
+
+template <bool LINEAR, bool CU, bool CV>
+inline u32 filterT(const TexLevel& lv, float s, float t) {
+    if constexpr (LINEAR) return bilinearT<CU, CV>(lv, s, t);
+    else return nearestT<CU, CV>(lv, s, t);
+}
+
+u32 filterLevel(const TexLevel& lv, float s, float t, bool linear, bool cu, bool cv) {
+    const int k = (linear ? 4 : 0) | (cu ? 2 : 0) | (cv ? 1 : 0);
+    switch (k) {
+    case 0: return filterT<false, false, false>(lv, s, t);
+    case 1: return filterT<false, false, true>(lv, s, t);
+    case 2: return filterT<false, true, false>(lv, s, t);
+    case 3: return filterT<false, true, true>(lv, s, t);
+    case 4: return filterT<true, false, false>(lv, s, t);
+    case 5: return filterT<true, false, true>(lv, s, t);
+    case 6: return filterT<true, true, false>(lv, s, t);
+    default: return filterT<true, true, true>(lv, s, t);
+    }
+}
+
+// One known level, one known filter: the common case (no mipmaps, or constant level mode).
+template <bool LINEAR, bool CU, bool CV>
+u32 sampleFixedT(const Sampler& sm, float s, float t, float, float) {
+    return filterT<LINEAR, CU, CV>(sm.levels[sm.fixed.level], s, t);
+}
+
+u32 sampleWithChoice(const Sampler& sm, const LevelChoice& c, float s, float t) {
+    const int last = std::max(sm.levelCount - 1, 0);
+    const int l = std::min(c.level, last);
+    u32 col = filterLevel(sm.levels[l], s, t, c.linear, sm.clampU, sm.clampV);
+    if (c.frac && l + 1 <= last) {
+        const u32 next = filterLevel(sm.levels[l + 1], s, t, c.linear, sm.clampU, sm.clampV);
+        col = mixLevels(col, next, c.frac);
+    }
+    return col;
+}
+
+u32 sampleFixedGeneral(const Sampler& sm, float s, float t, float, float) {
+    return sampleWithChoice(sm, sm.fixed, s, t);
+}
+
+u32 sampleDynamic(const Sampler& sm, float s, float t, float lod, float w) {
+    return sampleWithChoice(sm, chooseLevel(sm.lod, levelOfDetail16(sm.lod, lod, w)), s, t);
+}
+
+}  // namespace
+
+u32 sampleNearest(const TexLevel& lv, float s, float t, bool clampU, bool clampV) {
+    return filterLevel(lv, s, t, false, clampU, clampV);
+}
+u32 sampleBilinear(const TexLevel& lv, float s, float t, bool clampU, bool clampV) {
+    return filterLevel(lv, s, t, true, clampU, clampV);
+}
+
+u32 mixLevels(u32 c, u32 cNext, int frac) {
+    return compact((spread(cNext) * u64(frac) + spread(c) * u64(16 - frac)) >> 4);
+}
+
+void Sampler::finalize() {
+    if (fixedChoice && fixed.frac == 0 && fixed.level < std::max(levelCount, 1)) {
+        const int k = (fixed.linear ? 4 : 0) | (clampU ? 2 : 0) | (clampV ? 1 : 0);
+        static constexpr SampleFn table[8] = {
+            &sampleFixedT<false, false, false>, &sampleFixedT<false, false, true>,
+            &sampleFixedT<false, true, false>,  &sampleFixedT<false, true, true>,
+            &sampleFixedT<true, false, false>,  &sampleFixedT<true, false, true>,
+            &sampleFixedT<true, true, false>,   &sampleFixedT<true, true, true>,
+        };
+        fn = table[k];
+    } else if (fixedChoice) {
+        fn = &sampleFixedGeneral;
+    } else {
+        fn = &sampleDynamic;
+    }
+}
+
+}  // namespace ge::soft
