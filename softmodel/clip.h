@@ -1,0 +1,35 @@
+// Clipping and discard rules of the software model (manual §10; ge-reference.md §8.5).
+//
+//  - The only geometric clipping is against the near plane (z < −w), and only with CMD_CLE = 1;
+//    there is no X/Y clipping (drawing is limited by the scissor instead).
+//  - A vertex outside screen X/Y [0, 4096) drops the whole primitive (CLE = 1 exempts vertices
+//    whose Z was clamped); with CLE = 0 so does a screen Z outside [0, 65536).
+//  - CLE = 0: any vertex with |z/w| ≥ 1.00003 drops the primitive. CLE = 1: only when all its
+//    vertices are beyond the same plane (near or far).
+//  - Triangles whose three vertices have w < 0 are dropped.
+//  - None of this applies in through mode.
+#pragma once
+#include "softmodel/transform.h"
+
+namespace ge::soft {
+
+// −1 beyond the near plane, +1 beyond the far plane, 0 inside, by |z/w| ≥ 1.00003 (§8.5).
+int depthSide(const ClipVertex& v);
+// Strictly behind the near clip plane z = −w: the part that near clipping removes.
+inline bool beyondNear(const ClipVertex& v) { return v.clip[2] < -v.clip[3]; }
+
+// The §8.5 discard decision for a primitive of n (1–3) transformed, non-through vertices.
+bool discardPrimitive(const TransformState& ts, const ClipVertex* const* v, int n);
+
+// Point on segment a→b at parameter t (clip space; colours with 8-bit weights as the GE's
+// interpolators), projected to the screen without a range check.
+void lerpVertex(const TransformState& ts, const ClipVertex& a, const ClipVertex& b, float t, ClipVertex& out);
+
+// Clips triangle (a, b, c) against the near plane z ≥ −w. Writes the remaining convex polygon
+// in the same winding to `out` and returns its vertex count (0, 3 or 4).
+int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
+                     ClipVertex out[4]);
+// Clips a line to z ≥ −w in place; false when nothing is left.
+bool clipLineNear(const TransformState& ts, ClipVertex& a, ClipVertex& b);
+
+}  // namespace ge::soft

@@ -1,0 +1,462 @@
+// Rasterisation of triangles, rectangles, lines and points (see raster.h for the rules followed).
+#include "softmodel/raster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace ge::soft {
+
+namespace {
+
+// Floor/ceil division for a positive divisor.
+inline s64 floorDiv(s64 a, s64 b) {
+    s64 q = a / b;
+    if ((a % b) != 0 && a < 0) --q;
+    return q;
+}
+inline s64 ceilDiv(s64 a, s64 b) { return -floorDiv(-a, b); }
+
+// Screen-linear attributes (depth, Gouraud colours) are interpolated the way the GE does it: a plane
+// with fixed-point gradients (14 fraction bits per 1/16 pixel) formed from the exact edge cross
+// products and the setup reciprocal q ≈ 2^(e+16)/|det| (e = floor(log2 |det|)), anchored at one
+// vertex (the leftmost, or the rightmost when the long top-to-bottom edge is the right side), and
+// floored at the pixel centre. (PPSSPP's software renderer, from hardware probes: exp36-41, exp54.)
+struct Plane {
+    s64 base = 0;  // value << 14 at drawing (0, 0)
+    s64 kx = 0, ky = 0;  // per 1/16 pixel, << 14
+    s64 at(s64 x, s64 y) const { return (base + kx * x + ky * y) >> 14; }
+};
+
+s64 setupRecip(u64 absDet, int& e) {
+    e = 63 - __builtin_clzll(absDet);
+    // 2^(e+16)/absDet lies in (2^15, 2^16]; e ≤ 47 here, so the shift stays inside 64 bits.
+    return s64((u64(1) << (e + 16)) / absDet);
+}
+
+Plane makePlane(const s64 X[3], const s64 Y[3], const s64 V[3]) {
+    Plane p;
+    const s64 det = (X[1] - X[0]) * (Y[2] - Y[0]) - (X[2] - X[0]) * (Y[1] - Y[0]);
+    if (det == 0) {
+        p.base = V[0] << 14;
+        return p;
+    }
+    const s64 nx = (V[1] - V[0]) * (Y[2] - Y[0]) - (V[2] - V[0]) * (Y[1] - Y[0]);
+    const s64 ny = (V[2] - V[0]) * (X[1] - X[0]) - (V[1] - V[0]) * (X[2] - X[0]);
+    int e = 0;
+    const s64 q = setupRecip(u64(det < 0 ? -det : det), e);
+    const s64 sign = det < 0 ? -1 : 1;
+    p.kx = (sign * nx * q) >> (e + 2);
+    p.ky = (sign * ny * q) >> (e + 2);
+    // Anchor vertex: order top/mid/bottom by (y, x); when the long edge top→bottom is the right
+    // side (and no edge is flat), the rightmost vertex, else the leftmost (ties: the upper one).
+    int top = 0, mid = 1, bot = 2;
+    auto above = [&](int a, int b) { return Y[a] < Y[b] || (Y[a] == Y[b] && X[a] < X[b]); };
+    if (above(mid, top)) std::swap(mid, top);
+    if (above(bot, mid)) std::swap(bot, mid);
+    if (above(mid, top)) std::swap(mid, top);
+    const s64 cross = (X[bot] - X[top]) * (Y[mid] - Y[top]) - (Y[bot] - Y[top]) * (X[mid] - X[top]);
+    const bool flat = Y[top] == Y[mid] || Y[mid] == Y[bot];
+    const bool right = cross > 0 && !flat;
+    int anchor = 0;
+    for (int i = 1; i < 3; ++i) {
+        const bool better = right ? (X[i] > X[anchor] || (X[i] == X[anchor] && Y[i] < Y[anchor]))
+                                  : (X[i] < X[anchor] || (X[i] == X[anchor] && Y[i] < Y[anchor]));
+        if (better) anchor = i;
+    }
+    p.base = (V[anchor] << 14) - p.kx * X[anchor] - p.ky * Y[anchor];
+    return p;
+}
+
+inline float finiteOr0(float v) { return std::isfinite(v) ? v : 0.0f; }
+
+// 1/w for perspective weights, keeping clear of a division by zero.
+inline double recipW(float w) {
+    double d = w;
+    if (!(std::fabs(d) >= 1e-20)) d = std::signbit(w) ? -1e-20 : 1e-20;
+    return 1.0 / d;
+}
+
+inline int sampleRowsOfTriangle(int minY, int maxY, int& y1, int& y2) {
+    y1 = int(ceilDiv(minY - 8, 16));
+    y2 = int(floorDiv(maxY - 8, 16));
+    return y1 <= y2;
+}
+
+void clipRows(const RasterParams& rp, int& y1, int& y2) {
+    y1 = std::max(y1, rp.clipY1);
+    y2 = std::min(y2, rp.clipY2);
+}
+
+// Level of detail from per-pixel texture-coordinate steps (§6.6 mode 0).
+inline float lodFromSteps(const RasterParams& rp, double ds, double dt) {
+    return texLog2(float(std::max(std::fabs(ds) * rp.texW0, std::fabs(dt) * rp.texH0)));
+}
+
+}  // namespace
+
+u8 fogToByte(float f) {
+    u32 bits;
+    std::memcpy(&bits, &f, 4);
+    if (bits & 0x80000000u) return 0;    // negative (and −0, negative NaN)
+    if (bits >= 0x3F800000u) return 255;  // ≥ 1, +inf, positive NaN
+    return u8(int(f * 256.0f));           // floor(f·256), < 1/256 gives 0
+}
+
+float texLog2(float v) {
+    u32 bits;
+    std::memcpy(&bits, &v, 4);
+    const int useful = int((bits >> 15) & 0xFFFF);  // exponent and top 8 mantissa bits, no sign
+    return float(useful - 127 * 256) / 256.0f;
+}
+
+bool Band::overlaps(int y1, int y2) const {
+    if (y1 > y2) return false;
+    if (count <= 1) return true;
+    const int b1 = y1 >> kShift, b2 = y2 >> kShift;
+    if (b2 - b1 + 1 >= count) return true;
+    for (int b = b1; b <= b2; ++b)
+        if (b % count == index) return true;
+    return false;
+}
+
+bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int& y1, int& y2) {
+    switch (kind) {
+    case PrimKind::Point:
+        y1 = y2 = int(floorDiv(v[0]->y, 16));
+        break;
+    case PrimKind::Line: {
+        const int lo = std::min(v[0]->y, v[1]->y), hi = std::max(v[0]->y, v[1]->y);
+        y1 = int(floorDiv(lo - 1, 16));
+        y2 = int(floorDiv(hi, 16));
+        break;
+    }
+    case PrimKind::Rect: {
+        const int lo = std::min(v[0]->y, v[1]->y), hi = std::max(v[0]->y, v[1]->y);
+        y1 = int(ceilDiv(lo - 8, 16));
+        y2 = int(ceilDiv(hi - 8, 16)) - 1;
+        break;
+    }
+    case PrimKind::Triangle: {
+        const int lo = std::min({v[0]->y, v[1]->y, v[2]->y}), hi = std::max({v[0]->y, v[1]->y, v[2]->y});
+        sampleRowsOfTriangle(lo, hi, y1, y2);
+        break;
+    }
+    }
+    clipRows(rp, y1, y2);
+    return y1 <= y2;
+}
+
+void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
+                    const ScreenVertex& prov, const Band& band, FragmentSink& sink) {
+    const ScreenVertex* v[3] = {&in0, &in1, &in2};
+    s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
+    if (area == 0) return;  // zero-area triangles draw nothing (§8.11)
+    if (area < 0) {
+        // Either winding rasterises the same pixels; work with the clockwise (on screen) order,
+        // for which all three edge functions are positive inside.
+        std::swap(v[1], v[2]);
+        area = -area;
+    }
+
+    // Pixel box whose centres lie within the vertices' extent, clipped.
+    const int minX = std::min({v[0]->x, v[1]->x, v[2]->x}), maxX = std::max({v[0]->x, v[1]->x, v[2]->x});
+    const int minY = std::min({v[0]->y, v[1]->y, v[2]->y}), maxY = std::max({v[0]->y, v[1]->y, v[2]->y});
+    const int px1 = std::max<int>(int(ceilDiv(minX - 8, 16)), rp.clipX1);
+    const int px2 = std::min<int>(int(floorDiv(maxX - 8, 16)), rp.clipX2);
+    int py1, py2;
+    sampleRowsOfTriangle(minY, maxY, py1, py2);
+    clipRows(rp, py1, py2);
+    if (px1 > px2 || !band.overlaps(py1, py2)) return;
+
+    // Edge function i (opposite vertex i) from a = v[i+1] to b = v[i+2]:
+    //   E_i(p) = (b.x − a.x)·(p.y − a.y) − (b.y − a.y)·(p.x − a.x) = A·p.x + B·p.y + C.
+    // Top-left rule (Figure 4-9): a left edge (going up, dy < 0) or a top edge (horizontal,
+    // going right) includes centres exactly on it (E ≥ 0); right and flat bottom edges do not
+    // (E ≥ 1).
+    s64 A[3], B[3], C[3], thr[3];
+    for (int i = 0; i < 3; ++i) {
+        const ScreenVertex& a = *v[(i + 1) % 3];
+        const ScreenVertex& b = *v[(i + 2) % 3];
+        const s64 dx = s64(b.x) - a.x, dy = s64(b.y) - a.y;
+        A[i] = -dy;
+        B[i] = dx;
+        C[i] = dy * a.x - dx * a.y;
+        thr[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : 1;
+    }
+    auto evalE = [&](int i, s64 px, s64 py) { return A[i] * (16 * px + 8) + B[i] * (16 * py + 8) + C[i]; };
+
+    const double areaD = double(area);
+
+    // Constant attributes are detected once so the common cases cost nothing per pixel.
+    const bool zConst = v[0]->z == v[1]->z && v[1]->z == v[2]->z;
+    const ScreenVertex& cs = rp.gouraud ? *v[0] : prov;  // colour source when constant
+    const bool colConst = !rp.gouraud || (std::memcmp(v[0]->color, v[1]->color, 4) == 0 &&
+                                          std::memcmp(v[1]->color, v[2]->color, 4) == 0);
+    const bool secConst = !rp.gouraud || (std::memcmp(v[0]->secondary, v[1]->secondary, 3) == 0 &&
+                                          std::memcmp(v[1]->secondary, v[2]->secondary, 3) == 0);
+    const bool fogConst = !rp.fog || (v[0]->fog == v[1]->fog && v[1]->fog == v[2]->fog);
+    // Planes of the screen-linear attributes (original vertex order: the plane does not depend on it).
+    const s64 PX[3] = {in0.x, in1.x, in2.x}, PY[3] = {in0.y, in1.y, in2.y};
+    const ScreenVertex* ov[3] = {&in0, &in1, &in2};
+    Plane zPlane, cPlane[4], sPlane[3];
+    if (!zConst) {
+        const s64 Z[3] = {in0.z, in1.z, in2.z};
+        zPlane = makePlane(PX, PY, Z);
+    }
+    if (!colConst) {
+        for (int c = 0; c < 4; ++c) {
+            const s64 C[3] = {ov[0]->color[c], ov[1]->color[c], ov[2]->color[c]};
+            cPlane[c] = makePlane(PX, PY, C);
+        }
+    }
+    if (!secConst) {
+        for (int c = 0; c < 3; ++c) {
+            const s64 C[3] = {ov[0]->secondary[c], ov[1]->secondary[c], ov[2]->secondary[c]};
+            sPlane[c] = makePlane(PX, PY, C);
+        }
+    }
+    const u8 fogValue = rp.fog ? fogToByte(v[0]->fog) : 255;
+
+    // Perspective-correct texture coordinates: s = Σ E_i·s_i/w_i / Σ E_i·q_i/w_i (the common
+    // factor 1/area cancels). Through mode and immediate vertices have w = 1: plain linear.
+    double sw[3] = {}, tw[3] = {}, qw[3] = {}, rw[3] = {};
+    if (rp.textured || rp.needW) {
+        for (int i = 0; i < 3; ++i) {
+            rw[i] = recipW(v[i]->w);
+            sw[i] = v[i]->s * rw[i];
+            tw[i] = v[i]->t * rw[i];
+            qw[i] = v[i]->q * rw[i];
+        }
+    }
+    auto texAt = [&](double e0, double e1, double e2, double& s, double& t) {
+        const double S = e0 * sw[0] + e1 * sw[1] + e2 * sw[2];
+        const double T = e0 * tw[0] + e1 * tw[1] + e2 * tw[2];
+        const double Q = e0 * qw[0] + e1 * qw[1] + e2 * qw[2];
+        s = S / Q;
+        t = T / Q;
+    };
+
+    for (int y = py1; y <= py2; ++y) {
+        if (!band.owns(y)) {
+            // Jump to the next block of rows (blocks are 16 rows).
+            y |= (1 << Band::kShift) - 1;
+            continue;
+        }
+        const s64 cy = 16 * s64(y) + 8;
+        s64 K[3], step[3];
+        s64 xl = px1, xr = px2;
+        bool empty = false;
+        for (int i = 0; i < 3; ++i) {
+            K[i] = A[i] * 8 + B[i] * cy + C[i];
+            step[i] = 16 * A[i];
+            // Solve step·x + K ≥ thr for x.
+            if (step[i] > 0) xl = std::max(xl, ceilDiv(thr[i] - K[i], step[i]));
+            else if (step[i] < 0) xr = std::min(xr, floorDiv(K[i] - thr[i], -step[i]));
+            else if (K[i] < thr[i]) empty = true;
+        }
+        if (empty || xl > xr) continue;
+
+        int quadX = -1;
+        float lod = 0.0f;
+        for (s64 x = xl; x <= xr; ++x) {
+            const s64 e0 = step[0] * x + K[0], e1 = step[1] * x + K[1], e2 = step[2] * x + K[2];
+            Fragment& f = sink.next();
+            f.x = int(x);
+            f.y = y;
+            const s64 cx = 16 * x + 8;
+            f.z = u16(zConst ? v[0]->z : std::clamp<s64>(zPlane.at(cx, cy), 0, 65535));
+            if (colConst) {
+                std::memcpy(f.color, cs.color, 4);
+            } else {
+                for (int c = 0; c < 4; ++c) f.color[c] = u8(std::clamp<s64>(cPlane[c].at(cx, cy), 0, 255));
+            }
+            if (secConst) {
+                std::memcpy(f.secondary, cs.secondary, 3);
+            } else {
+                for (int c = 0; c < 3; ++c) f.secondary[c] = u8(std::clamp<s64>(sPlane[c].at(cx, cy), 0, 255));
+            }
+            if (fogConst) {
+                f.fog = fogValue;
+            } else {
+                const double fs = (v[0]->fog * double(e0) + v[1]->fog * double(e1) + v[2]->fog * double(e2)) / areaD;
+                f.fog = fogToByte(float(fs));
+            }
+            if (rp.textured) {
+                double s, t;
+                texAt(double(e0), double(e1), double(e2), s, t);
+                f.s = finiteOr0(float(s));
+                f.t = finiteOr0(float(t));
+                if (rp.needLod) {
+                    // One level of detail per 2×2 quad: s step across X and t step down Y,
+                    // measured at the quad's top-left pixel (§6.6).
+                    const int qx = int(x) & ~1;
+                    if (qx != quadX) {
+                        quadX = qx;
+                        const int qy = y & ~1;
+                        double s00, t00, s10, t10, s01, t01;
+                        texAt(double(evalE(0, qx, qy)), double(evalE(1, qx, qy)), double(evalE(2, qx, qy)), s00, t00);
+                        texAt(double(evalE(0, qx + 1, qy)), double(evalE(1, qx + 1, qy)),
+                              double(evalE(2, qx + 1, qy)), s10, t10);
+                        texAt(double(evalE(0, qx, qy + 1)), double(evalE(1, qx, qy + 1)),
+                              double(evalE(2, qx, qy + 1)), s01, t01);
+                        lod = lodFromSteps(rp, s10 - s00, t01 - t00);
+                    }
+                    f.lod = lod;
+                } else {
+                    f.lod = 0.0f;
+                }
+            } else {
+                f.s = f.t = 0.0f;
+                f.lod = 0.0f;
+            }
+            if (rp.needW) {
+                const double R = double(e0) * rw[0] + double(e1) * rw[1] + double(e2) * rw[2];
+                f.w = finiteOr0(float(areaD / R));
+            } else {
+                f.w = 1.0f;
+            }
+        }
+    }
+}
+
+void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
+                     FragmentSink& sink) {
+    const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
+    const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
+    if (xl == xr || yt == yb) return;  // zero width or height draws nothing (§8.11)
+    // Centres 16·p + 8 in [xl, xr) × [yt, yb) (§8.1).
+    const int px1 = std::max<int>(int(ceilDiv(xl - 8, 16)), rp.clipX1);
+    const int px2 = std::min<int>(int(ceilDiv(xr - 8, 16)) - 1, rp.clipX2);
+    const int py1 = std::max<int>(int(ceilDiv(yt - 8, 16)), rp.clipY1);
+    const int py2 = std::min<int>(int(ceilDiv(yb - 8, 16)) - 1, rp.clipY2);
+    if (px1 > px2 || !band.overlaps(py1, py2)) return;
+
+    // Texture orientation by where v0 lies relative to v1 (§8.2):
+    //   s = sBase + fx·sDx + fy·sDy, t = tBase + fx·tDx + fy·tDy, fx, fy ∈ [0, 1) across the box.
+    float sBase = 0, sDx = 0, sDy = 0, tBase = 0, tDx = 0, tDy = 0;
+    const bool left = v0.x < v1.x, above = v0.y < v1.y;
+    if (left && above) {  // top-left gets (v0.s, v0.t); +X: S v0→v1; +Y: T v0→v1
+        sBase = v0.s, sDx = v1.s - v0.s, tBase = v0.t, tDy = v1.t - v0.t;
+    } else if (left) {  // v0 left and below: (v1.s, v0.t); +X: T v0→v1; +Y: S v1→v0
+        sBase = v1.s, sDy = v0.s - v1.s, tBase = v0.t, tDx = v1.t - v0.t;
+    } else if (above) {  // v0 right and above: (v0.s, v1.t); +X: T v1→v0; +Y: S v0→v1
+        sBase = v0.s, sDy = v1.s - v0.s, tBase = v1.t, tDx = v0.t - v1.t;
+    } else {  // v0 right and below: (v1.s, v1.t); +X: S v1→v0; +Y: T v1→v0
+        sBase = v1.s, sDx = v0.s - v1.s, tBase = v1.t, tDy = v0.t - v1.t;
+    }
+    const double invW = 1.0 / double(xr - xl), invH = 1.0 / double(yb - yt);
+    float lod = 0.0f;
+    if (rp.textured && rp.needLod) lod = lodFromSteps(rp, 16.0 * sDx * invW, 16.0 * tDy * invH);
+
+    // Colour, Z and fog of the second vertex for every pixel (manual §4.4, §8).
+    const u16 z = u16(v1.z);
+    const u8 fog = rp.fog ? fogToByte(v1.fog) : 255;
+    const float w = rp.needW ? v1.w : 1.0f;
+    for (int y = py1; y <= py2; ++y) {
+        if (!band.owns(y)) {
+            y |= (1 << Band::kShift) - 1;
+            continue;
+        }
+        const double fy = double(16 * y + 8 - yt) * invH;
+        for (int x = px1; x <= px2; ++x) {
+            Fragment& f = sink.next();
+            f.x = x;
+            f.y = y;
+            f.z = z;
+            std::memcpy(f.color, v1.color, 4);
+            std::memcpy(f.secondary, v1.secondary, 3);
+            f.fog = fog;
+            if (rp.textured) {
+                const double fx = double(16 * x + 8 - xl) * invW;
+                f.s = finiteOr0(float(sBase + fx * sDx + fy * sDy));
+                f.t = finiteOr0(float(tBase + fx * tDx + fy * tDy));
+                f.lod = lod;
+            } else {
+                f.s = f.t = 0.0f;
+                f.lod = 0.0f;
+            }
+            f.w = w;
+        }
+    }
+}
+
+void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
+                FragmentSink& sink) {
+    const s64 dx = s64(v1.x) - v0.x, dy = s64(v1.y) - v0.y;
+    const s64 steps = std::max(dx < 0 ? -dx : dx, dy < 0 ? -dy : dy) / 16;
+    if (steps == 0) return;  // zero-length lines draw nothing (§8.11)
+    // Lines running left/up start one subpixel back so a vertex exactly on a pixel boundary
+    // lands in the pixel the line runs into (PPSSPP's approximate line rule, §8.11).
+    const s64 x0 = v0.x - (dx < 0 ? 1 : 0), y0 = v0.y - (dy < 0 ? 1 : 0);
+    const double r0 = recipW(v0.w), r1 = recipW(v1.w);
+    auto texAt = [&](s64 i, double& s, double& t) {
+        const double a = double(steps - i) * r0, b = double(i) * r1;
+        const double Q = a * v0.q + b * v1.q;
+        s = (a * v0.s + b * v1.s) / Q;
+        t = (a * v0.t + b * v1.t) / Q;
+    };
+    // The end pixel (i = steps) is left out (§8.11).
+    for (s64 i = 0; i < steps; ++i) {
+        const s64 xi = x0 + floorDiv(dx * i, steps), yi = y0 + floorDiv(dy * i, steps);
+        const s64 px = floorDiv(xi, 16), py = floorDiv(yi, 16);
+        if (px < rp.clipX1 || px > rp.clipX2 || py < rp.clipY1 || py > rp.clipY2) continue;
+        if (!band.owns(int(py))) continue;
+        const s64 a = steps - i, b = i;
+        Fragment& f = sink.next();
+        f.x = int(px);
+        f.y = int(py);
+        f.z = u16((v0.z * a + v1.z * b) / steps);
+        if (rp.gouraud) {
+            for (int c = 0; c < 4; ++c) f.color[c] = u8((v0.color[c] * a + v1.color[c] * b) / steps);
+            for (int c = 0; c < 3; ++c) f.secondary[c] = u8((v0.secondary[c] * a + v1.secondary[c] * b) / steps);
+        } else {  // flat: the end vertex (§8.1)
+            std::memcpy(f.color, v1.color, 4);
+            std::memcpy(f.secondary, v1.secondary, 3);
+        }
+        f.fog = rp.fog ? fogToByte(float((v0.fog * double(a) + v1.fog * double(b)) / double(steps))) : 255;
+        if (rp.textured) {
+            double s, t, sn, tn;
+            texAt(i, s, t);
+            f.s = finiteOr0(float(s));
+            f.t = finiteOr0(float(t));
+            if (rp.needLod) {
+                texAt(i + 1, sn, tn);
+                f.lod = lodFromSteps(rp, sn - s, tn - t);
+            } else {
+                f.lod = 0.0f;
+            }
+        } else {
+            f.s = f.t = 0.0f;
+            f.lod = 0.0f;
+        }
+        if (rp.needW) {
+            f.w = finiteOr0(float(double(steps) / (double(a) * r0 + double(b) * r1)));
+        } else {
+            f.w = 1.0f;
+        }
+    }
+}
+
+void rasterPoint(const RasterParams& rp, const ScreenVertex& v, const Band& band, FragmentSink& sink) {
+    const s64 px = floorDiv(v.x, 16), py = floorDiv(v.y, 16);
+    if (px < rp.clipX1 || px > rp.clipX2 || py < rp.clipY1 || py > rp.clipY2) return;
+    if (!band.owns(int(py))) return;
+    Fragment& f = sink.next();
+    f.x = int(px);
+    f.y = int(py);
+    f.z = u16(v.z);
+    std::memcpy(f.color, v.color, 4);
+    std::memcpy(f.secondary, v.secondary, 3);
+    f.fog = rp.fog ? fogToByte(v.fog) : 255;
+    if (rp.textured) {
+        f.s = finiteOr0(v.s / v.q);
+        f.t = finiteOr0(v.t / v.q);
+    } else {
+        f.s = f.t = 0.0f;
+    }
+    f.lod = texLog2(0.0f);  // a point has no footprint: level 0, magnification filter
+    f.w = v.w;
+}
+
+}  // namespace ge::soft

@@ -1,0 +1,749 @@
+// The software model's Renderer: primitive assembly, batching and band threads (see soft_renderer.h).
+#include "softmodel/soft_renderer.h"
+
+#include <algorithm>
+#include <condition_variable>
+#include <cstring>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "hle/spline.h"
+#include "hle/vertex_decoder.h"
+#include "softmodel/clip.h"
+#include "softmodel/pixel.h"
+#include "softmodel/raster.h"
+#include "softmodel/transform.h"
+
+namespace ge::soft {
+
+namespace {
+
+constexpr size_t kFragmentBuffer = 1024;       // fragments handed to shadeFragments at a time
+constexpr size_t kBatchPrimitives = 8192;      // a batch is dispatched when it holds this many
+constexpr size_t kBatchVertices = 24576;
+constexpr int kMaxThreads = 32;                // 64 bands of 16 rows cover the 1024-row space
+
+struct RasterPrim {
+    PrimKind kind = PrimKind::Point;
+    u32 v[3] = {};   // indices into Batch::verts
+    u32 prov = 0;    // flat-shading vertex (triangles)
+    int y1 = 0, y2 = -1;  // pixel rows the primitive can touch, clipped
+};
+
+struct DrawItem {
+    PixelState ps;
+    RasterParams rp;
+    u32 firstPrim = 0, primEnd = 0;
+};
+
+// VRAM byte range [begin, end) as linear offsets from 0x04000000 (all mirrors alias, §7.3).
+struct VramRange {
+    u32 begin = 0, end = 0;
+};
+
+bool overlaps(const VramRange& a, const VramRange& b) { return a.begin < b.end && b.begin < a.end; }
+
+void addRange(std::vector<VramRange>& list, VramRange r) {
+    if (r.begin >= r.end) return;
+    for (VramRange& e : list) {
+        if (r.begin >= e.begin && r.end <= e.end) return;
+        if (e.begin >= r.begin && e.end <= r.end) {
+            e = r;
+            return;
+        }
+    }
+    list.push_back(r);
+}
+
+struct Batch {
+    std::vector<ScreenVertex> verts;
+    std::vector<RasterPrim> prims;
+    std::vector<DrawItem> draws;
+    std::vector<VramRange> writes;  // what the queued draws may write (frame and depth buffers)
+    bool empty() const { return draws.empty(); }
+    void clear() {
+        verts.clear();
+        prims.clear();
+        draws.clear();
+        writes.clear();
+    }
+};
+
+void shadeCallback(void* ctx, const Fragment* f, size_t n) { shadeFragments(*static_cast<const PixelState*>(ctx), f, n); }
+
+// Rasterises every primitive of a batch that touches the band, draw by draw, in order.
+void rasterBatch(const Batch& b, const Band& band, std::vector<Fragment>& buf) {
+    FragmentSink sink(buf.data(), buf.size(), shadeCallback, nullptr);
+    for (const DrawItem& d : b.draws) {
+        sink.setTarget(shadeCallback, const_cast<PixelState*>(&d.ps));
+        for (u32 i = d.firstPrim; i < d.primEnd; ++i) {
+            const RasterPrim& p = b.prims[i];
+            if (!band.overlaps(p.y1, p.y2)) continue;
+            const ScreenVertex* v = b.verts.data();
+            switch (p.kind) {
+            case PrimKind::Triangle:
+                rasterTriangle(d.rp, v[p.v[0]], v[p.v[1]], v[p.v[2]], v[p.prov], band, sink);
+                break;
+            case PrimKind::Rect: rasterRectangle(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
+            case PrimKind::Line: rasterLine(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
+            case PrimKind::Point: rasterPoint(d.rp, v[p.v[0]], band, sink); break;
+            }
+        }
+    }
+    sink.flush();
+}
+
+// Bits per texel of each CMD_TPF format (for the bytes a texture level spans, §6.1).
+u32 texelBits(u32 fmt) {
+    static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 32, 32, 32, 32, 32};
+    return bits[fmt & 15];
+}
+
+VramRange vramRange(u32 addr, u64 bytes) {
+    // Linear offset inside the 2 MiB; a range running past the end is cut there (a wrap would be
+    // a corrupt setting; the conservative answer for the hazard check is the tail).
+    const u32 off = (Memory::normalize(addr) - Memory::kVramBase) & (Memory::kVramSize - 1);
+    const u64 end = std::min<u64>(u64(off) + bytes, Memory::kVramSize);
+    return {off, u32(end)};
+}
+
+RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
+    RasterParams rp;
+    // Scissor ∩ REGION2 (§8.6; REGION1 is kept 0 by games).
+    rp.clipX1 = int(st.SCISSOR1_x());
+    rp.clipY1 = int(st.SCISSOR1_y());
+    rp.clipX2 = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
+    rp.clipY2 = int(std::min(st.SCISSOR2_y(), st.REGION2_y()));
+    // Clear mode draws flat: colour from the provoking vertex (PPSSPP's software renderer).
+    rp.gouraud = st.SHADE_gouraud() && !st.isClearMode();
+    rp.textured = textured && !st.isClearMode();
+    const u32 levelMode = st.TLEVEL_mode();
+    rp.needLod = rp.textured && levelMode == 0;
+    rp.needW = rp.textured && levelMode == 2;
+    rp.fog = !through && st.FGE_on();
+    rp.texW0 = float(st.textureWidth(0));
+    rp.texH0 = float(st.textureHeight(0));
+    return rp;
+}
+
+}  // namespace
+
+struct SoftRenderer::Impl {
+    Impl(Memory& m, const SoftOptions& opt) : mem(m), cache(createTextureCache()) {
+        int n = opt.threads;
+        if (n <= 0) n = int(std::thread::hardware_concurrency());
+        threads = std::clamp(n, 1, kMaxThreads);
+        fragBufs.resize(size_t(threads), std::vector<Fragment>(kFragmentBuffer));
+        if (threads > 1) {
+            for (int i = 0; i < threads; ++i) workers.emplace_back([this, i] { workerLoop(i); });
+        }
+    }
+    ~Impl() {
+        waitIdle();
+        {
+            std::lock_guard<std::mutex> lk(m);
+            quit = true;
+        }
+        cvWork.notify_all();
+        for (std::thread& t : workers) t.join();
+    }
+
+    // ---- threads and batches ----
+    void workerLoop(int index) {
+        u64 seen = 0;
+        for (;;) {
+            const Batch* b;
+            {
+                std::unique_lock<std::mutex> lk(m);
+                cvWork.wait(lk, [&] { return quit || generation != seen; });
+                if (quit) return;
+                seen = generation;
+                b = job;
+            }
+            rasterBatch(*b, Band{index, threads}, fragBufs[size_t(index)]);
+            {
+                std::lock_guard<std::mutex> lk(m);
+                if (--remaining == 0) cvDone.notify_all();
+            }
+        }
+    }
+
+    Batch& building() { return batches[buildIndex]; }
+
+    // Drops the texture cache's copies of what a finished batch drew, so later draws texturing
+    // from those bytes (render to texture) decode the new contents.
+    void retire(Batch& b) {
+        for (const VramRange& r : b.writes) invalidateTextureCache(*cache, Memory::kVramBase + r.begin, r.end - r.begin);
+        if (!b.writes.empty()) psValid = false;
+        b.clear();
+    }
+
+    void retireInFlight() {
+        if (!inFlight) return;
+        {
+            std::unique_lock<std::mutex> lk(m);
+            cvDone.wait(lk, [&] { return remaining == 0; });
+        }
+        inFlight = false;
+        retire(batches[buildIndex ^ 1]);
+    }
+
+    void submit() {
+        Batch& b = building();
+        if (b.empty()) return;
+        ++stats.batches;
+        retireInFlight();
+        if (threads <= 1) {
+            rasterBatch(b, Band{}, fragBufs[0]);
+            retire(b);
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lk(m);
+            job = &b;
+            remaining = threads;
+            ++generation;
+        }
+        cvWork.notify_all();
+        inFlight = true;
+        buildIndex ^= 1;  // the other batch was retired above: empty
+    }
+
+    void waitIdle() {
+        submit();
+        retireInFlight();
+    }
+
+    bool hasWork() const { return inFlight || !batches[buildIndex].empty(); }
+
+    // True when the texture of the coming draw may overlap what queued draws write.
+    bool textureHazard(const GeState& st) const {
+        if (!hasWork()) return false;
+        const u32 maxLevel = std::min<u32>(st.TMODE_maxlevel(), 7);
+        const u32 bits = texelBits(st.TPF_format());
+        for (u32 l = 0; l <= maxLevel; ++l) {
+            const u32 addr = st.textureAddr(int(l));
+            if (!Memory::isVram(addr)) continue;
+            const u64 bytes = u64(st.textureBufWidth(int(l))) * st.textureHeight(int(l)) * bits / 8 + 16;
+            const VramRange r = vramRange(addr, bytes);
+            for (int k = 0; k < 2; ++k) {
+                if (k == 1 && !inFlight) continue;
+                const Batch& b = batches[k == 0 ? buildIndex : buildIndex ^ 1];
+                for (const VramRange& w : b.writes)
+                    if (overlaps(r, w)) return true;
+            }
+        }
+        return false;
+    }
+
+    // Frame/depth buffer bytes a draw with this state and clip rectangle may write.
+    void noteWrites(const GeState& st, const RasterParams& rp) {
+        const int rows = std::clamp(rp.clipY2 + 1, 0, 1024);
+        const u32 bpp = st.framebufFormat() == GE_FORMAT_8888 ? 4 : 2;
+        addRange(building().writes, vramRange(st.framebufAddr(), u64(st.framebufStride()) * rows * bpp));
+        if (st.ZTE_on() || st.isClearMode())
+            addRange(building().writes, vramRange(st.depthbufAddr(), u64(st.depthbufStride()) * rows * 2));
+    }
+
+    // ---- per draw ----
+    // Queues the primitives assembled in `scratch` as one draw with the given state.
+    void queueDraw(const GeState& st, const RasterParams& rp, bool textured, bool forceRebuild) {
+        if (scratchPrims.empty()) return;
+        // Render to texture: the texture must see every earlier draw's pixels (§8.13).
+        if (rp.textured && textureHazard(st)) waitIdle();
+        const bool through = st.isThrough();
+        constexpr u32 kPixelDirty = DIRTY_TEXTURE | DIRTY_CLUT | DIRTY_FRAGMENT | DIRTY_BLEND | DIRTY_DEPTHSTENCIL |
+                                    DIRTY_RASTER | DIRTY_FRAMEBUF;
+        if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured) {
+            ps = buildPixelState(st, mem, *cache, textured);
+            psValid = !forceRebuild;
+            psThrough = through;
+            psTextured = textured;
+            pendingDirty = 0;
+        }
+        Batch& b = building();
+        const u32 base = u32(b.verts.size());
+        b.verts.insert(b.verts.end(), scratchVerts.begin(), scratchVerts.end());
+        DrawItem d;
+        d.ps = ps;
+        d.rp = rp;
+        d.firstPrim = u32(b.prims.size());
+        for (RasterPrim p : scratchPrims) {
+            p.v[0] += base, p.v[1] += base, p.v[2] += base, p.prov += base;
+            b.prims.push_back(p);
+        }
+        d.primEnd = u32(b.prims.size());
+        b.draws.push_back(std::move(d));
+        noteWrites(st, rp);
+        stats.primitives += scratchPrims.size();
+        if (b.prims.size() >= kBatchPrimitives || b.verts.size() >= kBatchVertices) submit();
+    }
+
+    // ---- primitive assembly (into scratchVerts / scratchPrims) ----
+    u32 pushVertex(u32 ci) {
+        if (vertIndex[ci] < 0) {
+            vertIndex[ci] = s32(scratchVerts.size());
+            scratchVerts.push_back(cverts[ci].sv);
+        }
+        return u32(vertIndex[ci]);
+    }
+    u32 pushNew(const ScreenVertex& sv) {
+        scratchVerts.push_back(sv);
+        return u32(scratchVerts.size() - 1);
+    }
+    void addPrim(PrimKind kind, u32 a, u32 b, u32 c, u32 prov) {
+        RasterPrim p;
+        p.kind = kind;
+        p.v[0] = a, p.v[1] = b, p.v[2] = c;
+        p.prov = prov;
+        const ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
+        if (!primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
+        scratchPrims.push_back(p);
+    }
+
+    // Back-face culling (§3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
+    // clockwise ones; zero-area triangles draw nothing anyway.
+    bool culled(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) const {
+        const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
+        if (area == 0) return true;
+        if (!cullOn) return false;
+        return cullClockwise ? area > 0 : area < 0;
+    }
+
+    // A triangle in primitive order; the third vertex is the provoking one (§8.1).
+    void triangle(u32 ia, u32 ib, u32 ic) {
+        const ClipVertex& a = cverts[ia];
+        const ClipVertex& b = cverts[ib];
+        const ClipVertex& c = cverts[ic];
+        const ClipVertex* v[3] = {&a, &b, &c};
+        if (!a.valid || !b.valid || !c.valid || discardPrimitive(*ts, v, 3)) {
+            ++stats.discarded;
+            return;
+        }
+        if (!ts->through) {
+            if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) {  // §8.5
+                ++stats.discarded;
+                return;
+            }
+            if (ts->clipEnable && (beyondNear(a) || beyondNear(b) || beyondNear(c))) {
+                ClipVertex poly[4];
+                const int n = clipTriangleNear(*ts, a, b, c, poly);
+                ++stats.clipped;
+                if (n < 3) return;
+                // Flat shading keeps the original provoking vertex's colour.
+                const u32 prov = pushVertex(ic);
+                u32 idx[4];
+                bool pushed[4] = {};
+                for (int k = 1; k + 1 < n; ++k) {
+                    if (culled(poly[0].sv, poly[k].sv, poly[k + 1].sv)) {
+                        ++stats.culled;
+                        continue;
+                    }
+                    for (int j : {0, k, k + 1}) {
+                        if (!pushed[j]) idx[j] = pushNew(poly[j].sv), pushed[j] = true;
+                    }
+                    addPrim(PrimKind::Triangle, idx[0], idx[k], idx[k + 1], prov);
+                }
+                return;
+            }
+        }
+        if (culled(a.sv, b.sv, c.sv)) {
+            ++stats.culled;
+            return;
+        }
+        addPrim(PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
+    }
+
+    void line(u32 ia, u32 ib) {
+        const ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
+        if (!v[0]->valid || !v[1]->valid || discardPrimitive(*ts, v, 2)) {
+            ++stats.discarded;
+            return;
+        }
+        if (!ts->through && ts->clipEnable && (beyondNear(*v[0]) || beyondNear(*v[1]))) {
+            ClipVertex a = *v[0], b = *v[1];
+            ++stats.clipped;
+            if (!clipLineNear(*ts, a, b)) return;
+            const u32 i0 = pushNew(a.sv), i1 = pushNew(b.sv);
+            addPrim(PrimKind::Line, i0, i1, i1, i1);
+            return;
+        }
+        const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
+        addPrim(PrimKind::Line, i0, i1, i1, i1);
+    }
+
+    void point(u32 ia) {
+        const ClipVertex* v[1] = {&cverts[ia]};
+        if (!v[0]->valid || discardPrimitive(*ts, v, 1)) {
+            ++stats.discarded;
+            return;
+        }
+        const u32 i = pushVertex(ia);
+        addPrim(PrimKind::Point, i, i, i, i);
+    }
+
+    void rectangle(u32 ia, u32 ib) {
+        const ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
+        if (!v[0]->valid || !v[1]->valid || discardPrimitive(*ts, v, 2)) {
+            ++stats.discarded;
+            return;
+        }
+        if (!ts->through && ts->texMap == 1) {
+            rectangleAsTriangles(v[0]->sv, v[1]->sv);
+            return;
+        }
+        const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
+        addPrim(PrimKind::Rect, i0, i1, i1, i1);
+    }
+
+    // Rectangles with texture projection are drawn as two triangles (§8.2), corners textured by
+    // the orientation table, colour/Z/fog of the second vertex.
+    void rectangleAsTriangles(const ScreenVertex& v0, const ScreenVertex& v1) {
+        const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
+        const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
+        if (xl == xr || yt == yb) return;
+        const bool left = v0.x < v1.x, above = v0.y < v1.y;
+        // Corner (fx, fy) ∈ {0, 1}²: which vertex gives s (and q) and which gives t.
+        auto corner = [&](int fx, int fy) {
+            ScreenVertex c = v1;
+            c.x = fx ? xr : xl;
+            c.y = fy ? yb : yt;
+            c.w = 1.0f;
+            const ScreenVertex* sFrom;
+            const ScreenVertex* tFrom;
+            if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
+            else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
+            else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
+            else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
+            c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
+            return c;
+        };
+        const u32 tl = pushNew(corner(0, 0)), tr = pushNew(corner(1, 0));
+        const u32 bl = pushNew(corner(0, 1)), br = pushNew(corner(1, 1));
+        addPrim(PrimKind::Triangle, tl, tr, bl, bl);
+        addPrim(PrimKind::Triangle, tr, br, bl, bl);
+    }
+
+    // Assembles `seq` (indices into cverts, in draw order) as `prim`; what does not complete a
+    // primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (§3.2, §8.11).
+    void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
+        const size_t n = seq.size();
+        std::vector<u32> keep;
+        switch (prim) {
+        case GE_PRIM_POINTS:
+            for (size_t i = 0; i < n; ++i) point(seq[i]);
+            break;
+        case GE_PRIM_LINES:
+            for (size_t i = 0; i + 1 < n; i += 2) line(seq[i], seq[i + 1]);
+            if (n & 1) keep.push_back(seq[n - 1]);
+            break;
+        case GE_PRIM_LINE_STRIP:
+            for (size_t i = 1; i < n; ++i) line(seq[i - 1], seq[i]);
+            if (n) keep.push_back(seq[n - 1]);
+            break;
+        case GE_PRIM_TRIANGLES:
+            for (size_t i = 0; i + 2 < n; i += 3) triangle(seq[i], seq[i + 1], seq[i + 2]);
+            for (size_t i = n - n % 3; i < n; ++i) keep.push_back(seq[i]);
+            break;
+        case GE_PRIM_TRIANGLE_STRIP:
+            // Every second triangle is wound the other way round; the newest vertex provokes.
+            for (size_t i = 2; i < n; ++i) {
+                if (!stripOdd) triangle(seq[i - 2], seq[i - 1], seq[i]);
+                else triangle(seq[i - 1], seq[i - 2], seq[i]);
+                stripOdd = !stripOdd;
+            }
+            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
+            break;
+        case GE_PRIM_TRIANGLE_FAN:
+            for (size_t i = 2; i < n; ++i) triangle(seq[0], seq[i - 1], seq[i]);
+            if (n >= 2) keep = {seq[0], seq[n - 1]};
+            else if (n == 1) keep = {seq[0]};
+            break;
+        case GE_PRIM_RECTANGLES:
+            for (size_t i = 0; i + 1 < n; i += 2) rectangle(seq[i], seq[i + 1]);
+            if (n & 1) keep.push_back(seq[n - 1]);
+            break;
+        default: break;
+        }
+        if (keepPending) {
+            pending.clear();
+            for (u32 k : keep) pending.push_back(cverts[k]);
+        }
+    }
+
+    void beginAssembly(const TransformState& t, const RasterParams& r, bool cull, bool cullCw) {
+        ts = &t;
+        rp = r;
+        cullOn = cull;
+        cullClockwise = cullCw;
+        scratchVerts.clear();
+        scratchPrims.clear();
+        vertIndex.assign(cverts.size(), -1);
+    }
+
+    // Decodes the vertices a draw uses (each distinct one once) into cverts after `first`
+    // entries already there, and the draw order into `seq`. False on unreadable data.
+    bool decodeDraw(const GeState& st, u32 vtype, u32 vaddr, u32 iaddr, u32 count, const TransformState& t,
+                    std::vector<u32>& seq) {
+        VertexReader reader(mem, st, vtype);
+        if (!reader.readIndices(iaddr, count, indices)) return false;
+        const bool skin = reader.hasWeights() && !reader.through();
+        const size_t first = cverts.size();
+        bool anyBad = false;
+        auto process = [&](u32 index, ClipVertex& out) {
+            DecodedVertex dv;
+            bool ok = reader.read(vaddr, index, dv);
+            anyBad |= !ok;
+            if (ok && skin) applySkinning(st, vtype, dv);
+            transformVertex(t, dv, out);
+            out.valid = ok && reader.hasPosition();  // no position: dropped (§8.11)
+        };
+        u32 lo = ~0u, hi = 0;
+        for (u32 i : indices) lo = std::min(lo, i), hi = std::max(hi, i);
+        seq.clear();
+        if (indices.empty()) return true;
+        if (u64(hi) - lo < u64(count) * 2 + 64) {
+            // Dense index range: transform each vertex of the range once.
+            cverts.resize(first + (hi - lo + 1));
+            std::vector<u8> used(hi - lo + 1, 0);
+            for (u32 i : indices) used[i - lo] = 1;
+            for (u32 k = 0; k <= hi - lo; ++k)
+                if (used[k]) process(lo + k, cverts[first + k]);
+            for (u32 i : indices) seq.push_back(u32(first + (i - lo)));
+            stats.vertices += std::count(used.begin(), used.end(), u8(1));
+        } else {
+            cverts.resize(first + indices.size());
+            for (size_t k = 0; k < indices.size(); ++k) {
+                process(indices[k], cverts[first + k]);
+                seq.push_back(u32(first + k));
+            }
+            stats.vertices += indices.size();
+        }
+        if (anyBad) ++stats.badDraws;  // drawn without the unreadable vertices
+        return true;
+    }
+
+    Memory& mem;
+    TextureCachePtr cache;
+    SoftStats stats;
+    int threads = 1;
+
+    Batch batches[2];
+    int buildIndex = 0;
+    bool inFlight = false;
+    std::vector<std::thread> workers;
+    std::mutex m;
+    std::condition_variable cvWork, cvDone;
+    u64 generation = 0;
+    int remaining = 0;
+    bool quit = false;
+    const Batch* job = nullptr;
+    std::vector<std::vector<Fragment>> fragBufs;
+
+    PixelState ps;
+    bool psValid = false, psThrough = false, psTextured = false;
+    u32 pendingDirty = DIRTY_ALL;
+
+    // Assembly state of the draw being built.
+    const TransformState* ts = nullptr;
+    RasterParams rp;
+    bool cullOn = false, cullClockwise = false;
+    std::vector<ClipVertex> cverts;
+    std::vector<s32> vertIndex;
+    std::vector<ScreenVertex> scratchVerts;
+    std::vector<RasterPrim> scratchPrims;
+    std::vector<u32> indices, seq;
+    // PRIM type 7 continuation: the transformed vertices still open, and the strip parity.
+    std::vector<ClipVertex> pending;
+    bool stripOdd = false;
+};
+
+SoftRenderer::SoftRenderer(Memory& mem, const SoftOptions& opt) : impl_(std::make_unique<Impl>(mem, opt)) {}
+SoftRenderer::~SoftRenderer() = default;
+
+int SoftRenderer::threadCount() const { return impl_->threads; }
+const SoftStats& SoftRenderer::stats() const { return impl_->stats; }
+
+void SoftRenderer::drawPrim(const PrimPacket& p) {
+    Impl& I = *impl_;
+    const GeState& st = *p.state;
+    I.pendingDirty |= p.dirty;
+    ++I.stats.draws;
+    if (!p.continuation) {
+        I.pending.clear();
+        I.stripOdd = false;
+    }
+    VertexReader probe(I.mem, st, p.vtype);
+    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal());
+    // The still-open vertices of the previous PRIM come first.
+    I.cverts.assign(I.pending.begin(), I.pending.end());
+    std::vector<u32>& seq = I.seq;
+    if (!I.decodeDraw(st, p.vtype, p.vertexAddr, p.indexAddr, p.count, ts, seq)) {
+        ++I.stats.badDraws;
+        I.pending.clear();
+        return;
+    }
+    std::vector<u32> full;
+    full.reserve(I.pending.size() + seq.size());
+    for (u32 i = 0; i < I.pending.size(); ++i) full.push_back(i);
+    full.insert(full.end(), seq.begin(), seq.end());
+
+    const bool textured = st.TME_on();
+    const RasterParams rp = makeRasterParams(st, ts.through, textured);
+    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
+    I.assemble(p.prim, full, true);
+    I.queueDraw(st, rp, textured, false);
+}
+
+void SoftRenderer::drawPatch(const PatchPacket& p) {
+    Impl& I = *impl_;
+    const GeState& st = *p.state;
+    I.pendingDirty |= p.dirty;
+    ++I.stats.patches;
+    I.pending.clear();
+    I.stripOdd = false;
+    TessOutput tess;
+    std::string err;
+    if (!tessellatePatch(I.mem, st, p, tess, &err)) {
+        ++I.stats.badDraws;
+        return;
+    }
+    if (tess.verts.empty()) return;
+    VertexReader probe(I.mem, st, p.vtype);
+    // The tessellator generates normals when lighting needs them (§3.2).
+    const bool hasNormal = probe.hasNormal() || st.LTE_on();
+    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
+    I.cverts.resize(tess.verts.size());
+    for (size_t i = 0; i < tess.verts.size(); ++i) {
+        transformVertex(ts, tess.verts[i], I.cverts[i]);
+        I.cverts[i].valid = true;
+    }
+    I.stats.vertices += tess.verts.size();
+    std::vector<u32>& seq = I.seq;
+    seq.clear();
+    for (u32 i : tess.indices)
+        if (i < tess.verts.size()) seq.push_back(i);
+
+    const bool textured = st.TME_on();
+    const RasterParams rp = makeRasterParams(st, ts.through, textured);
+    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
+    // Patch culling (CMD_PCE, §11.2) removes patches outside the drawing region; the clip
+    // rectangle already includes REGION2, so those pixels are never drawn either way.
+    const bool odd = I.stripOdd;
+    I.assemble(tess.prim, seq, false);
+    I.stripOdd = odd;
+    I.queueDraw(st, rp, textured, false);
+}
+
+void SoftRenderer::drawImmediate(const ImmPacket& p) {
+    Impl& I = *impl_;
+    I.pendingDirty |= p.dirty;
+    ++I.stats.immediates;
+    if (p.vertices.empty()) return;
+    // The AP2 flags of the first vertex override shading, culling, texturing, fog, dither and
+    // antialiasing for this primitive (ge-reference §3.12): draw with a state copy that has them.
+    GeState st = *p.state;
+    auto setFlag = [&](GeCmd op, bool on) { st.regs[op] = (u32(op) << 24) | (on ? 1u : 0u); };
+    const u32 f = p.flags;
+    setFlag(GE_CMD_AAE, (f >> 11) & 1);
+    setFlag(GE_CMD_SHADE, (f >> 18) & 1);
+    setFlag(GE_CMD_BCE, (f >> 19) & 1);
+    setFlag(GE_CMD_CULL, (f >> 20) & 1);
+    setFlag(GE_CMD_TME, (f >> 21) & 1);
+    setFlag(GE_CMD_FGE, (f >> 22) & 1);
+    setFlag(GE_CMD_DTE, (f >> 23) & 1);
+
+    // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
+    TransformState ts;
+    ts.through = true;
+    const bool through = st.isThrough();
+    const bool projective = !through && st.TMAP_mode() == 1;
+    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
+    I.cverts.resize(p.vertices.size());
+    std::vector<u32>& seq = I.seq;
+    seq.clear();
+    for (size_t i = 0; i < p.vertices.size(); ++i) {
+        const ImmVertex& iv = p.vertices[i];
+        ClipVertex& cv = I.cverts[i];
+        cv = ClipVertex{};
+        ScreenVertex& sv = cv.sv;
+        auto to16 = [](float v) {
+            float t = v * 16.0f;
+            if (!(t > -1048576.0f)) t = -1048576.0f;
+            if (t > 1048576.0f) t = 1048576.0f;
+            return int(t);
+        };
+        sv.x = to16(iv.x);
+        sv.y = to16(iv.y);
+        sv.z = iv.z;
+        // Through mode: texels, divided by the level-0 size (§8.10); else normalised (S, T, Q).
+        sv.s = through ? iv.s * invW : iv.s;
+        sv.t = through ? iv.t * invH : iv.t;
+        sv.q = projective ? iv.q : 1.0f;
+        sv.w = 1.0f;
+        sv.fog = float(iv.fog) / 255.0f;  // byte 255 = no fog; fogToByte gives the byte back
+        std::memcpy(sv.color, iv.color, 4);
+        std::memcpy(sv.secondary, iv.secondary, 3);
+        seq.push_back(u32(i));
+    }
+    const bool textured = st.TME_on();
+    RasterParams rp = makeRasterParams(st, true, textured);
+    rp.fog = st.FGE_on() && !through;
+    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
+    const bool odd = I.stripOdd;
+    I.stripOdd = false;
+    I.assemble(p.prim, seq, false);
+    I.stripOdd = odd;
+    // The pixel state is built from the overridden copy and not reused by later draws.
+    I.queueDraw(st, rp, textured, true);
+}
+
+void SoftRenderer::blockTransfer(const TransferPacket& t, Memory& mem) {
+    Impl& I = *impl_;
+    I.waitIdle();  // the source may be a frame buffer still being drawn; the destination too
+    performTransfer(mem, t);
+    memoryWritten(t.dstBegin(), t.dstBytes());
+}
+
+void SoftRenderer::clutLoaded(const GeState&) {
+    clutChanged(*impl_->cache);
+    impl_->psValid = false;
+}
+
+void SoftRenderer::textureFlush() {
+    invalidateTextureCache(*impl_->cache, 0, 0);
+    impl_->psValid = false;
+}
+
+void SoftRenderer::textureSync() {
+    // Drawing is ordered, and draws texturing from memory that queued draws write wait for them
+    // (queueDraw), so TSYNC needs nothing more.
+}
+
+void SoftRenderer::finish() { impl_->waitIdle(); }
+
+void SoftRenderer::syncMemoryForRead(u32 addr, u32 size) {
+    Impl& I = *impl_;
+    if (!I.hasWork()) return;
+    // Only VRAM is drawn into. Size 0 = unknown extent: wait whenever it starts in VRAM.
+    const u32 a = Memory::normalize(addr);
+    const u64 end = u64(a) + (size ? size : 1);
+    if (end > Memory::kVramBase && a < Memory::kVramMirrorsEnd) I.waitIdle();
+}
+
+void SoftRenderer::memoryWritten(u32 addr, u32 size) {
+    Impl& I = *impl_;
+    I.waitIdle();  // queued draws must not see (or be overwritten by) the new bytes out of order
+    invalidateTextureCache(*I.cache, addr, size);
+    I.psValid = false;
+}
+
+void SoftRenderer::flushToMemory() { impl_->waitIdle(); }
+
+std::unique_ptr<ge::Renderer> createSoftRenderer(ge::Memory& mem, const SoftOptions& opt) {
+    return std::make_unique<SoftRenderer>(mem, opt);
+}
+
+}  // namespace ge::soft

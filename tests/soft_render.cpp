@@ -1,0 +1,304 @@
+// End-to-end tests of the software renderer: display lists built with ListBuilder, executed by
+// GeEngine, drawn by SoftRenderer into emulated VRAM. Checks coverage, culling sense (§3.6),
+// PRIM type 7 continuation (§3.2), near clipping (§8.5), immediate vertices (§3.12), render to
+// texture ordering and thread-count independence of the output.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "hle/ge_engine.h"
+#include "hle/list_builder.h"
+#include "softmodel/soft_renderer.h"
+
+using namespace ge;
+using namespace ge::soft;
+
+namespace {
+
+constexpr u32 kFb = 0x04000000, kZb = 0x04088000, kFb2 = 0x04110000;
+constexpr u32 kStride = 512;
+
+struct Scene {
+    Memory mem{16u << 20};  // the builder's arena starts at 0x08800000
+    ListBuilder b{&mem};
+
+    Scene() {
+        b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+        b.depthBuffer(kZb - Memory::kVramBase, kStride);
+        b.scissor(0, 0, 480, 272);
+        b.region(0, 0, 480, 272);
+        b.offset(2048 - 240, 2048 - 136);
+        b.viewport(2048, 2048, 480, 272);
+        b.depthRange(65535, 0);
+        b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    }
+    // Runs the list on a fresh renderer with `threads` and returns the whole of VRAM.
+    std::vector<u8> run(int threads) {
+        ListBuilder copy = b;
+        copy.finish();
+        const u32 list = copy.placeList();
+        SoftOptions o;
+        o.threads = threads;
+        auto r = createSoftRenderer(mem, o);
+        mem.fill(Memory::kVramBase, 0, Memory::kVramSize);
+        GeEngine eng(mem, r.get());
+        eng.startList(list, 0);
+        EXPECT_EQ(eng.run(), RunStatus::Completed);
+        r->flushToMemory();
+        const u8* v = mem.ptr(Memory::kVramBase, Memory::kVramSize);
+        return std::vector<u8>(v, v + Memory::kVramSize);
+    }
+    static u32 pixel(const std::vector<u8>& vram, u32 fb, int x, int y) {
+        // RGB only: without a stencil test drawing keeps the alpha (stencil) bits (§8.7).
+        return readLE32(&vram[(fb - Memory::kVramBase) + (u32(y) * kStride + u32(x)) * 4]) & 0xFFFFFF;
+    }
+    // Through-mode vertices: 8888 colour, 16-bit position.
+    static constexpr u32 kThrough = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    void throughPrim(u32 prim, const std::vector<BuildVertex>& v) {
+        auto bytes = packVertices(kThrough, v.data(), u32(v.size()));
+        b.drawArrayData(prim, kThrough, u32(v.size()), nullptr, bytes.data());
+    }
+};
+
+BuildVertex tv(float x, float y, u32 color, float z = 0) {
+    BuildVertex v;
+    v.x = x, v.y = y, v.z = z;
+    v.color = color;
+    return v;
+}
+
+}  // namespace
+
+TEST(SoftRender, ThroughRectangleCoversHalfOpenBox) {
+    Scene s;
+    s.throughPrim(GE_PRIM_RECTANGLES, {tv(10, 10, 0xFF0000FF), tv(20, 15, 0xFF0000FF)});
+    auto vram = s.run(1);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 10, 10), 0x0000FFu);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 19, 14), 0x0000FFu);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 20, 14), 0x000000u);  // x2 excluded
+    EXPECT_EQ(Scene::pixel(vram, kFb, 19, 15), 0x000000u);  // y2 excluded
+    EXPECT_EQ(Scene::pixel(vram, kFb, 9, 10), 0x000000u);
+    int n = 0;
+    for (int y = 0; y < 272; ++y)
+        for (int x = 0; x < 480; ++x) n += Scene::pixel(vram, kFb, x, y) == 0x0000FFu;
+    EXPECT_EQ(n, 10 * 5);
+}
+
+TEST(SoftRender, TransformedTriangleLandsWhereTheViewportPutsIt) {
+    Scene s;
+    // Identity matrices: clip = model. Viewport 480×272 centred at 2048 with the usual offset:
+    // drawing x = 240 + 240·X, y = 136 − 136·Y.
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    s.b.setMatrix(GeMatrix::World, id);
+    s.b.setMatrix(GeMatrix::View, id);
+    s.b.setMatrix(GeMatrix::Proj, id);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+    BuildVertex v[3];
+    v[0].x = -0.5f, v[0].y = 0.5f;   // (120, 68)
+    v[1].x = 0.5f, v[1].y = 0.5f;    // (360, 68)
+    v[2].x = -0.5f, v[2].y = -0.5f;  // (120, 204)
+    for (auto& e : v) e.color = 0xFF00FF00, e.z = 0.25f;
+    auto bytes = packVertices(vtype, v, 3);
+    s.b.enable(GE_CMD_CLE, true);
+    s.b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 3, nullptr, bytes.data());
+    auto vram = s.run(1);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 121, 69), 0x00FF00u);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 120, 68), 0x00FF00u);  // top-left corner centre is inside
+    EXPECT_EQ(Scene::pixel(vram, kFb, 119, 100), 0x000000u);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 300, 190), 0x000000u);  // beyond the hypotenuse
+    EXPECT_EQ(Scene::pixel(vram, kFb, 355, 68), 0x00FF00u);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 359, 68), 0x000000u);  // centre just right of the hypotenuse
+    // Depth written: Z = SZ·0.25 + TZ with sceGuDepthRange(65535, 0): −32767.5·0.25 + 32767.5.
+    const u16 z = readLE16(&vram[(kZb - Memory::kVramBase) + (100u * kStride + 150u) * 2]);
+    EXPECT_EQ(z, 0);  // depth writes are off (ZTE = 0)
+}
+
+TEST(SoftRender, CullingSense) {
+    // Clockwise on screen (y down): (10,10) → (40,10) → (10,40).
+    auto draw = [](bool cullOn, bool ccwBit, bool clockwise) {
+        Scene s;
+        s.b.enable(GE_CMD_BCE, cullOn);
+        s.b.cullMode(ccwBit);
+        if (clockwise) s.throughPrim(GE_PRIM_TRIANGLES, {tv(10, 10, 0xFFFFFFFF), tv(40, 10, 0xFFFFFFFF), tv(10, 40, 0xFFFFFFFF)});
+        else s.throughPrim(GE_PRIM_TRIANGLES, {tv(10, 10, 0xFFFFFFFF), tv(10, 40, 0xFFFFFFFF), tv(40, 10, 0xFFFFFFFF)});
+        auto vram = s.run(1);
+        return Scene::pixel(vram, kFb, 15, 15) == 0xFFFFFFu;
+    };
+    // CULL = 0 culls clockwise triangles, CULL = 1 counter-clockwise ones (§3.6).
+    EXPECT_FALSE(draw(true, false, true));
+    EXPECT_TRUE(draw(true, false, false));
+    EXPECT_TRUE(draw(true, true, true));
+    EXPECT_FALSE(draw(true, true, false));
+    EXPECT_TRUE(draw(false, false, true));
+    EXPECT_TRUE(draw(false, true, false));
+    // Clear mode never culls.
+    Scene c;
+    c.b.enable(GE_CMD_BCE, true);
+    c.b.cullMode(false);
+    c.b.cmd(GE_CMD_CMODE, 1 | 1 << 8);
+    c.throughPrim(GE_PRIM_TRIANGLES, {tv(10, 10, 0xFF123456), tv(40, 10, 0xFF123456), tv(10, 40, 0xFF123456)});
+    c.b.cmd(GE_CMD_CMODE, 0);
+    EXPECT_EQ(Scene::pixel(c.run(1), kFb, 15, 15), 0x123456u);
+}
+
+TEST(SoftRender, StripContinuesAcrossPrimType7) {
+    std::vector<BuildVertex> strip;
+    for (int i = 0; i < 8; ++i)
+        strip.push_back(tv(float(20 + 30 * (i / 2)), float(i % 2 ? 80 : 20), 0xFF000000 | u32(i * 30) << 8 | 0xFF, 0));
+    Scene whole;
+    whole.throughPrim(GE_PRIM_TRIANGLE_STRIP, strip);
+    Scene split;
+    auto bytes = packVertices(Scene::kThrough, strip.data(), 8);
+    const u32 addr = split.b.place(bytes.data(), u32(bytes.size()));
+    split.b.setVertexType(Scene::kThrough);
+    split.b.drawArray(GE_PRIM_TRIANGLE_STRIP, Scene::kThrough, 3, 0, addr);
+    split.b.drawArray(GE_PRIM_KEEP_PREVIOUS, Scene::kThrough, 1, 0, 0);  // pointer continues
+    split.b.drawArray(GE_PRIM_KEEP_PREVIOUS, Scene::kThrough, 4, 0, 0);
+    auto a = whole.run(1), c = split.run(1);
+    EXPECT_TRUE(a == c);
+    EXPECT_NE(Scene::pixel(a, kFb, 100, 50), 0x000000u);
+    // Culling follows the strip's alternating winding across the split too: with culling on,
+    // exactly every second triangle survives, the same ones either way.
+    whole.b.enable(GE_CMD_BCE, true);
+    whole.throughPrim(GE_PRIM_TRIANGLE_STRIP, strip);
+    split.b.enable(GE_CMD_BCE, true);
+    split.b.drawArray(GE_PRIM_TRIANGLE_STRIP, Scene::kThrough, 3, 0, addr);
+    split.b.drawArray(GE_PRIM_KEEP_PREVIOUS, Scene::kThrough, 5, 0, 0);
+    EXPECT_TRUE(whole.run(1) == split.run(1));
+}
+
+TEST(SoftRender, NearPlaneClippingOnlyWithCle) {
+    auto draw = [](bool cle) {
+        Scene s;
+        const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        s.b.setMatrix(GeMatrix::World, id);
+        s.b.setMatrix(GeMatrix::View, id);
+        s.b.setMatrix(GeMatrix::Proj, id);
+        s.b.enable(GE_CMD_CLE, cle);
+        constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+        BuildVertex v[3];
+        v[0].x = -0.5f, v[0].y = 0.5f, v[0].z = -3.0f;  // beyond the near plane (z < −w)
+        v[1].x = 0.5f, v[1].y = 0.5f, v[1].z = 0.5f;
+        v[2].x = -0.5f, v[2].y = -0.5f, v[2].z = 0.5f;
+        for (auto& e : v) e.color = 0xFFFFFFFF;
+        auto bytes = packVertices(vtype, v, 3);
+        s.b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 3, nullptr, bytes.data());
+        auto vram = s.run(1);
+        int n = 0;
+        for (int y = 0; y < 272; ++y)
+            for (int x = 0; x < 480; ++x) n += Scene::pixel(vram, kFb, x, y) == 0xFFFFFFu;
+        return n;
+    };
+    EXPECT_EQ(draw(false), 0);  // CLE = 0: a vertex beyond the near plane drops the triangle
+    const int clipped = draw(true);
+    EXPECT_GT(clipped, 1000);
+    EXPECT_LT(clipped, 240 * 136 / 2);  // less than the unclipped triangle
+}
+
+TEST(SoftRender, ImmediateVertices) {
+    Scene s;
+    // Through mode for the immediate vertices: X2/Y2 = (x << 4) + 0x8000 (ge-reference §3.12).
+    s.b.setVertexType(vt::THROUGH);
+    auto vertex = [&](int x, int y, u32 rgb, u32 ap2) {
+        s.b.cmd(GE_CMD_X2, u32(x * 16 + 0x8000));
+        s.b.cmd(GE_CMD_Y2, u32(y * 16 + 0x8000));
+        s.b.cmd(GE_CMD_Z2, 0);
+        s.b.cmd(GE_CMD_RGB2, rgb);
+        s.b.cmd(GE_CMD_AP2, ap2);
+    };
+    vertex(30, 30, 0x00FF00, 0xFF | GE_PRIM_RECTANGLES << 8);
+    vertex(50, 40, 0x0000FF, 0xFF | GE_PRIM_KEEP_PREVIOUS << 8);
+    s.b.nop();  // ends the immediate primitive
+    auto vram = s.run(1);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 30, 30), 0x0000FFu);  // the second vertex's colour (red)
+    EXPECT_EQ(Scene::pixel(vram, kFb, 49, 39), 0x0000FFu);
+    EXPECT_EQ(Scene::pixel(vram, kFb, 50, 39), 0x000000u);
+}
+
+TEST(SoftRender, RenderToTextureSeesEarlierDraws) {
+    // Draw a red square into a second buffer, then texture from it (REPLACE) onto the screen.
+    auto build = [](Scene& s) {
+        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(64, 64, 0xFF0000FF)});
+        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+        s.b.enable(GE_CMD_TME, true);
+        s.b.texMode(GE_TFMT_8888, 0, false);
+        s.b.setTexture(0, kFb2, 64, 64, 64);
+        s.b.texFunc(3, true);
+        s.b.texFilter(0, 0);
+        constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        BuildVertex a = tv(100, 100, 0xFFFFFFFF), c = tv(164, 164, 0xFFFFFFFF);
+        a.u = 0, a.v = 0, c.u = 64, c.v = 64;
+        BuildVertex v[2] = {a, c};
+        auto bytes = packVertices(vtype, v, 2);
+        s.b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, bytes.data());
+    };
+    Scene one, four;
+    build(one);
+    build(four);
+    auto a = one.run(1), b = four.run(4);
+    EXPECT_EQ(Scene::pixel(a, kFb, 130, 130), 0x0000FFu);
+    EXPECT_TRUE(a == b);
+}
+
+TEST(SoftRender, OutputIdenticalForAnyThreadCount) {
+    // Many overlapping blended, Gouraud-shaded triangles, rectangles and lines, transformed and
+    // through mode: the VRAM bytes must not depend on the number of rasterising threads.
+    Scene s;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> X(-20, 500), Y(-20, 290);
+    std::uniform_int_distribution<u32> C(0, 0xFFFFFFFF);
+    s.b.enable(GE_CMD_ABE, true);
+    s.b.blendFunc(0, 2, 3);
+    s.b.enable(GE_CMD_ZTE, true);
+    s.b.depthFunc(7);
+    s.b.shadeModel(true);
+    std::vector<BuildVertex> tris, rects;
+    for (int i = 0; i < 150; ++i) tris.push_back(tv(X(rng), Y(rng), C(rng), float(C(rng) & 0xFFFF)));
+    for (int i = 0; i < 40; ++i) rects.push_back(tv(X(rng), Y(rng), C(rng), float(C(rng) & 0xFFFF)));
+    s.throughPrim(GE_PRIM_TRIANGLES, tris);
+    s.throughPrim(GE_PRIM_RECTANGLES, rects);
+    s.throughPrim(GE_PRIM_LINE_STRIP, rects);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    s.b.setMatrix(GeMatrix::World, id);
+    s.b.setMatrix(GeMatrix::View, id);
+    s.b.setMatrix(GeMatrix::Proj, id);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+    std::uniform_real_distribution<float> P(-1.2f, 1.2f);
+    std::vector<BuildVertex> fan;
+    for (int i = 0; i < 60; ++i) {
+        BuildVertex v;
+        v.x = P(rng), v.y = P(rng), v.z = P(rng) * 0.8f;
+        v.color = C(rng);
+        fan.push_back(v);
+    }
+    auto bytes = packVertices(vtype, fan.data(), u32(fan.size()));
+    s.b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, u32(fan.size()), nullptr, bytes.data());
+    auto one = s.run(1);
+    auto two = s.run(2);
+    auto four = s.run(4);
+    EXPECT_TRUE(one == two);
+    EXPECT_TRUE(one == four);
+    int drawn = 0;
+    for (int y = 0; y < 272; ++y)
+        for (int x = 0; x < 480; ++x) drawn += Scene::pixel(one, kFb, x, y) != 0x000000u;
+    EXPECT_GT(drawn, 20000);
+}
+
+TEST(SoftRender, BadVertexAddressIsHarmless) {
+    Scene s;
+    s.b.setVertexType(Scene::kThrough);
+    s.b.drawArray(GE_PRIM_TRIANGLES, Scene::kThrough, 30, 0, 0x0FFFFFF0);  // wild address
+    SoftOptions o;
+    o.threads = 2;
+    auto r = createSoftRenderer(s.mem, o);
+    s.b.finish();
+    const u32 list = s.b.placeList();
+    GeEngine eng(s.mem, r.get());
+    eng.startList(list, 0);
+    eng.run();
+    r->flushToMemory();
+    EXPECT_GE(static_cast<SoftRenderer*>(r.get())->stats().badDraws, 1u);
+}
