@@ -138,7 +138,9 @@ TEST(Replay, CorruptedDumpsNeverCrashOrHang) {
             dump::ReplayResult res;
             std::string e2;
             bool ok = dump::replayDump(d, eng, {}, res, e2);
-            if (!ok) EXPECT_FALSE(e2.empty());
+            if (!ok) {
+                EXPECT_FALSE(e2.empty());
+            }
         }
         // Truncated record lists replay what is there.
         dump::Dump t = orig;

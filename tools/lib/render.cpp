@@ -3,13 +3,9 @@
 #include <chrono>
 #include <filesystem>
 
-#if __has_include("softmodel/soft_renderer.h")
 #include "softmodel/soft_renderer.h"
-#define GE2GL_HAVE_SOFT 1
-#endif
-#if defined(GE2GL_HAVE_GL) && __has_include("translator/gl_renderer.h")
+#ifdef GE2GL_HAVE_GL
 #include "translator/gl_renderer.h"
-#define GE2GL_GL_READY 1
 #endif
 
 namespace ge::tools {
@@ -17,17 +13,12 @@ namespace ge::tools {
 std::unique_ptr<Renderer> createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
     if (opt.backend == "null") return std::make_unique<NullRenderer>();
     if (opt.backend == "soft") {
-#ifdef GE2GL_HAVE_SOFT
         soft::SoftOptions so;
         so.threads = opt.threads;
         return soft::createSoftRenderer(mem, so);
-#else
-        err = "backend 'soft' is not built in this version of ge2gl";
-        return nullptr;
-#endif
     }
     if (opt.backend == "gl") {
-#ifdef GE2GL_GL_READY
+#ifdef GE2GL_HAVE_GL
         gl::GlOptions go;
         if (opt.glContext == "egl") go.context = gl::ContextKind::EGL;
         else if (opt.glContext != "osmesa") {
@@ -50,7 +41,7 @@ std::unique_ptr<Renderer> createBackend(const RenderOptions& opt, Memory& mem, s
 }
 
 std::string backendStats(const std::string& backend, const Renderer& r) {
-#ifdef GE2GL_GL_READY
+#ifdef GE2GL_HAVE_GL
     if (backend == "gl") return gl::glStatsText(gl::glStats(r));
 #endif
     (void)backend;
