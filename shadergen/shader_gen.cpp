@@ -1,0 +1,455 @@
+// GLSL generators. Every formula cites the ge-reference.md row it implements; integer
+// arithmetic throughout so the result is the GE's, not an approximation in float.
+#include "shadergen/shader_gen.h"
+
+#include <string>
+
+namespace ge::shadergen {
+namespace {
+
+const char* compareExpr(int func) {
+    // GE compare codes (ref §3.10): 0 NEVER, 1 ALWAYS, 2 EQUAL, 3 NOTEQUAL, 4 LESS, 5 LEQUAL,
+    // 6 GREATER, 7 GEQUAL; the expression compares a OP b.
+    switch (func & 7) {
+        case 0: return "false";
+        case 1: return "true";
+        case 2: return "(a == b)";
+        case 3: return "(a != b)";
+        case 4: return "(a < b)";
+        case 5: return "(a <= b)";
+        case 6: return "(a > b)";
+        default: return "(a >= b)";
+    }
+}
+
+void emitCompare(std::string& s, const char* name, int func) {
+    s += "bool ";
+    s += name;
+    s += "(int a, int b) { return ";
+    s += compareExpr(func);
+    s += "; }\n";
+}
+
+// Blend factor code → GLSL expression of an ivec3 (ref §3.10 factor table). cs/cd: source and
+// destination colour, as/ad: alphas, fix: FIXA or FIXB.
+std::string blendFactor(int code, bool isA) {
+    const char* other = isA ? "cd" : "cs";  // code 0/1: A uses Cd, B uses Cs
+    const char* fix = isA ? "u_fixA" : "u_fixB";
+    switch (code) {
+        case 0: return std::string(other);
+        case 1: return std::string("(ivec3(255) - ") + other + ")";
+        case 2: return "ivec3(as)";
+        case 3: return "ivec3(255 - as)";
+        case 4: return "ivec3(ad)";
+        case 5: return "ivec3(255 - ad)";
+        case 6: return "ivec3(2 * as)";
+        case 7: return "ivec3(max(255 - 2 * as, 0))";
+        case 8: return "ivec3(2 * ad)";
+        case 9: return "ivec3(max(255 - 2 * ad, 0))";
+        default: return fix;  // 10–15: the fixed colour (ref §3.10)
+    }
+}
+
+std::string logicExpr(int op) {
+    // CMD_LOP codes (ref §3.10), s = fragment, d = frame buffer, 8-bit per channel.
+    switch (op & 15) {
+        case 0: return "ivec3(0)";
+        case 1: return "s & d";
+        case 2: return "s & ~d";
+        case 3: return "s";
+        case 4: return "~s & d";
+        case 5: return "d";
+        case 6: return "s ^ d";
+        case 7: return "s | d";
+        case 8: return "~(s | d)";
+        case 9: return "~(s ^ d)";
+        case 10: return "~d";
+        case 11: return "s | ~d";
+        case 12: return "~s";
+        case 13: return "~s | d";
+        case 14: return "~(s & d)";
+        default: return "ivec3(255)";
+    }
+}
+
+void header(std::string& s, const HostCaps&, const FsKey* fk, const std::string& desc) {
+    s += "#version 330 core\n";
+    if (fk && fk->dstRead == DstRead::FbFetch) s += "#extension GL_EXT_shader_framebuffer_fetch : require\n";
+    if (fk && fk->depthRead == DepthRead::Fetch)
+        s += "#extension GL_ARM_shader_framebuffer_fetch_depth_stencil : require\n";
+    s += "// ge2gl ";
+    s += desc;
+    s += "\n";
+}
+
+}  // namespace
+
+bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
+    (void)err;
+    std::string s;
+    header(s, caps, nullptr, describe(key));
+    // Everything arrives in drawing coordinates from the CPU transform; GL only rasterises.
+    // Colours, Z and fog are linear in screen space (ref §8.1): noperspective. Texture
+    // coordinates arrive pre-multiplied by 1/w and are divided per pixel in the fragment shader.
+    const char* colorInterp = key.flatShade ? "flat" : "noperspective";
+    s += "layout(location = 0) in vec3 a_pos;\n"
+         "layout(location = 1) in vec4 a_color;\n"
+         "layout(location = 2) in vec3 a_color2;\n"
+         "layout(location = 3) in vec4 a_tex;\n"
+         "layout(location = 4) in float a_fog;\n"
+         "uniform vec2 u_ndcScale;\n";
+    s += std::string(colorInterp) + " out vec4 v_color;\n";
+    s += std::string(colorInterp) + " out vec3 v_color2;\n";
+    s += "noperspective out vec4 v_tex;\n"
+         "noperspective out float v_fog;\n"
+         "noperspective out float v_z;\n"
+         "void main() {\n"
+         "  v_color = a_color;\n"
+         "  v_color2 = a_color2;\n"
+         "  v_tex = a_tex;\n"
+         "  v_fog = a_fog;\n"
+         "  v_z = a_pos.z;\n"
+         // The target's row 0 is drawing row 0; with GL's lower-left window origin this makes
+         // llvmpipe's fill convention the GE's top-left rule (min-x and min-y edges drawn).
+         "  gl_Position = vec4(a_pos.x * u_ndcScale.x - 1.0, a_pos.y * u_ndcScale.y - 1.0, 0.0, 1.0);\n"
+         "}\n";
+    out = std::move(s);
+    return true;
+}
+
+bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& out, std::string* err) {
+    if (k.dstRead == DstRead::FbFetch && !caps.fbFetch) {
+        if (err) *err = "framebuffer fetch requested but not available";
+        return false;
+    }
+    if (k.depthRead == DepthRead::Fetch && !caps.depthFetch) {
+        if (err) *err = "depth fetch requested but not available";
+        return false;
+    }
+    if (k.depthRead != DepthRead::None && k.dstRead == DstRead::None) {
+        if (err) *err = "depth read without colour read";
+        return false;
+    }
+    const bool dst = k.dstRead != DstRead::None;
+    const bool depthInShader = k.depthRead != DepthRead::None;
+    std::string s;
+    header(s, caps, &k, describe(k));
+    const char* colorInterp = k.flatShade ? "flat" : "noperspective";
+    s += std::string(colorInterp) + " in vec4 v_color;\n";
+    s += std::string(colorInterp) + " in vec3 v_color2;\n";
+    s += "noperspective in vec4 v_tex;\n"
+         "noperspective in float v_fog;\n"
+         "noperspective in float v_z;\n";
+    if (k.dstRead == DstRead::FbFetch)
+        s += "layout(location = 0) inout uvec4 o_color;\n";
+    else
+        s += "layout(location = 0) out uvec4 o_color;\n";
+    s += "uniform int u_dither[16];\n"
+         "uniform ivec4 u_keep;\n"
+         "uniform ivec2 u_zRange;\n";
+    if (k.dstRead == DstRead::Texture) s += "uniform usampler2D u_dstColor;\n";
+    if (k.depthRead == DepthRead::Texture) s += "uniform sampler2D u_dstDepth;\n";
+
+    // ---- texture sampling (ref §8.10, §6.6) ----
+    if (k.tex) {
+        s += "uniform usampler2D u_tex;\n"
+             "uniform ivec4 u_texLevels[8];\n"
+             "uniform ivec2 u_texParams;\n"
+             "uniform float u_texSlope;\n"
+             "uniform ivec3 u_texEnv;\n";
+        s += "ivec4 texel(int lv, int u, int v) {\n"
+             "  ivec4 L = u_texLevels[lv];\n";
+        // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ref §8.10).
+        s += k.texClampU ? "  u = clamp(u, 0, min(L.y, 512) - 1);\n" : "  u = u & (L.y - 1) & 511;\n";
+        s += k.texClampV ? "  v = clamp(v, 0, min(L.z, 512) - 1);\n" : "  v = v & (L.z - 1) & 511;\n";
+        s += "  u = min(u, L.y - 1); v = min(v, L.z - 1);\n"
+             "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
+             "}\n";
+        // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
+        // the sample point half a texel and keeps a 4-bit fraction (ref §8.10).
+        s += "ivec2 fixCoord(int lv, vec2 st) {\n"
+             "  vec2 p = st * vec2(u_texLevels[lv].yz) * 256.0;\n"
+             "  p = clamp(floor(p), vec2(-1073741824.0), vec2(1073741824.0));\n"
+             "  return ivec2(p);\n"
+             "}\n"
+             "ivec4 sampleNearest(int lv, vec2 st) {\n"
+             "  ivec2 p = fixCoord(lv, st) >> 8;\n"
+             "  return texel(lv, p.x, p.y);\n"
+             "}\n"
+             "ivec4 sampleLinear(int lv, vec2 st) {\n"
+             "  ivec2 p = fixCoord(lv, st) - ivec2(128);\n"
+             "  ivec2 i0 = p >> 8;\n"
+             "  ivec2 f = (p >> 4) & 15;\n"
+             "  ivec4 c00 = texel(lv, i0.x, i0.y), c10 = texel(lv, i0.x + 1, i0.y);\n"
+             "  ivec4 c01 = texel(lv, i0.x, i0.y + 1), c11 = texel(lv, i0.x + 1, i0.y + 1);\n"
+             "  return (c00 * ((16 - f.x) * (16 - f.y)) + c10 * (f.x * (16 - f.y)) +\n"
+             "          c01 * ((16 - f.x) * f.y) + c11 * (f.x * f.y)) >> 8;\n"
+             "}\n";
+        s += "ivec4 sampleTexture() {\n"
+             "  vec2 st = v_tex.xy / v_tex.z;\n";
+        // Level of detail in 1/16 steps (ref §6.6).
+        if (k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
+            s += "  vec2 size0 = vec2(u_texLevels[0].yz);\n"
+                 "  float m = max(abs(dFdx(st.x)) * size0.x, abs(dFdy(st.y)) * size0.y);\n"
+                 "  int lod = m > 0.0 ? int(floor(clamp(log2(m), -64.0, 64.0) * 16.0)) : -1024;\n";
+        } else if (k.texLodMode == 2) {
+            s += "  float m = u_texSlope * v_tex.w;\n"
+                 "  int lod = m > 0.0 ? int(floor((clamp(log2(m), -64.0, 64.0) + 1.0) * 16.0)) : -1024;\n";
+        } else {
+            s += "  int lod = 0;\n";
+        }
+        s += "  lod += u_texParams.y;\n"
+             "  bool minify = lod > 0;\n"
+             "  int level = 0;\n"
+             "  int frac = 0;\n";
+        if (k.texMip) {
+            s += "  if (minify && u_texParams.x > 0) {\n"
+                 "    int d = min(lod, u_texParams.x * 16);\n";
+            if (k.texMip == 2)
+                s += "    level = d >> 4;\n"
+                     "    frac = level < u_texParams.x ? (d & 15) : 0;\n";
+            else
+                s += "    level = (d + 8) >> 4;\n";
+            s += "  }\n";
+        }
+        if (k.texMinLinear == k.texMagLinear) {
+            s += k.texMinLinear ? "  ivec4 c = sampleLinear(level, st);\n" : "  ivec4 c = sampleNearest(level, st);\n";
+            if (k.texMip == 2)
+                s += std::string("  if (frac > 0) c = (") + (k.texMinLinear ? "sampleLinear" : "sampleNearest") +
+                     "(level + 1, st) * frac + c * (16 - frac)) >> 4;\n";
+        } else {
+            s += "  bool lin = minify ? ";
+            s += k.texMinLinear ? "true" : "false";
+            s += " : ";
+            s += k.texMagLinear ? "true" : "false";
+            s += ";\n"
+                 "  ivec4 c = lin ? sampleLinear(level, st) : sampleNearest(level, st);\n";
+            if (k.texMip == 2)
+                s += "  if (frac > 0) c = ((lin ? sampleLinear(level + 1, st) : sampleNearest(level + 1, st)) * frac"
+                     " + c * (16 - frac)) >> 4;\n";
+        }
+        s += "  return c;\n"
+             "}\n";
+    }
+    if (k.fog)
+        s += "uniform ivec3 u_fogColor;\n"
+             // f becomes 8-bit: 0 at or below 0, 255 at or above 1, else floor(f·256) (ref §8.9).
+             "int fogFactor() {\n"
+             "  if (!(v_fog > 0.0)) return 0;\n"
+             "  if (v_fog >= 1.0) return 255;\n"
+             "  return min(int(floor(v_fog * 256.0)), 255);\n"
+             "}\n";
+    if (k.alphaTest) {
+        s += "uniform ivec2 u_alphaTest;\n";
+        emitCompare(s, "alphaCompare", k.alphaTest - 1);
+    }
+    if (k.colorTest) s += "uniform ivec3 u_colorRef;\nuniform ivec3 u_colorMask;\n";
+    if (k.stencilTest) {
+        s += "uniform ivec2 u_stencil;\n";
+        emitCompare(s, "stencilCompare", k.stencilTest - 1);
+    }
+    if (depthInShader) emitCompare(s, "depthCompare", k.depthTest - 1);
+    if (k.blend) s += "uniform ivec3 u_fixA;\nuniform ivec3 u_fixB;\n";
+
+    // Storage conversion: truncate to the frame-buffer format, keep the replicated form.
+    s += "ivec4 formatBits() {\n";
+    switch (k.fbFormat & 3) {
+        case 0: s += "  return ivec4(0xF8, 0xFC, 0xF8, 0x00);\n"; break;
+        case 1: s += "  return ivec4(0xF8, 0xF8, 0xF8, 0x80);\n"; break;
+        case 2: s += "  return ivec4(0xF0);\n"; break;
+        default: s += "  return ivec4(0xFF);\n"; break;
+    }
+    s += "}\n"
+         "ivec4 expandBits(ivec4 t) {\n";
+    switch (k.fbFormat & 3) {
+        case 0: s += "  return ivec4(t.r | (t.r >> 5), t.g | (t.g >> 6), t.b | (t.b >> 5), 255);\n"; break;
+        case 1: s += "  return ivec4(t.r | (t.r >> 5), t.g | (t.g >> 5), t.b | (t.b >> 5), t.a != 0 ? 255 : 0);\n"; break;
+        case 2: s += "  return t | (t >> 4);\n"; break;
+        default: s += "  return t;\n"; break;
+    }
+    s += "}\n";
+    if (k.stencilTest && k.fbFormat != 0) {
+        // Stencil operations per frame-buffer format (ref §8.7). s is the 8-bit stored value.
+        s += "int stencilOp(int op, int s) {\n"
+             "  if (op == 1) return 0;\n"
+             "  if (op == 2) return u_stencil.x;\n"
+             "  if (op == 3) return ~s & 255;\n";
+        switch (k.fbFormat & 3) {
+            case 1: s += "  if (op == 4) return 255;\n  if (op == 5) return 0;\n"; break;
+            case 2: s += "  if (op == 4) return min(s + 0x10, 255);\n  if (op == 5) return max(s - 0x10, 0);\n"; break;
+            default: s += "  if (op == 4) return min(s + 1, 255);\n  if (op == 5) return max(s - 1, 0);\n"; break;
+        }
+        s += "  return s;\n"
+             "}\n";
+    }
+
+    // ---- main ----
+    s += "void main() {\n"
+         "  ivec2 pix = ivec2(gl_FragCoord.xy);\n"
+         // Z is linear in screen space and truncated; the epsilon keeps exact vertex values exact
+         // against float interpolation noise.
+         "  int z = int(clamp(v_z + (1.0 / 1024.0), 0.0, 65535.0));\n"
+         "  float zOut = float(z) * (1.0 / 65536.0);\n";
+    if (k.tex) s += "  ivec4 t = sampleTexture();\n";  // before any discard: derivatives
+    if (k.depthRange)
+        s += "  if (z < u_zRange.x || z > u_zRange.y) discard;\n";  // ref §8.4 step 2
+    if (k.dstRead == DstRead::FbFetch) s += "  ivec4 dst = ivec4(o_color);\n";
+    if (k.dstRead == DstRead::Texture) s += "  ivec4 dst = ivec4(texelFetch(u_dstColor, pix, 0));\n";
+    if (dst && k.fbFormat == 0) s += "  dst.a = 0;\n";  // 5650 reads Ad = 0 (ref §8.8)
+    s += "  ivec4 prim = ivec4(v_color + vec4(1.0 / 1024.0));\n";
+    s += "  ivec4 c;\n";
+    if (k.clearMode) {
+        s += "  c = prim;\n";
+    } else {
+        s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";
+        if (k.tex) {
+            // Texture function, exact forms of ref §8.3.
+            const bool d = k.texDouble;
+            s += "  ivec4 p = prim;\n";
+            const char* modA = k.texAlpha ? "((p.a + 1) * t.a) >> 8" : "p.a";
+            switch (k.texFunc) {
+                case 0:  // MODULATE
+                    s += d ? "  c.rgb = ((p.rgb + 1) * t.rgb * 2) >> 8;\n" : "  c.rgb = ((p.rgb + 1) * t.rgb) >> 8;\n";
+                    s += std::string("  c.a = ") + modA + ";\n";
+                    break;
+                case 1:  // DECAL
+                    if (k.texAlpha)
+                        s += std::string("  c.rgb = ((p.rgb + 1) * (255 - t.a) + (t.rgb + 1) * t.a) >> ") +
+                             (d ? "7" : "8") + ";\n";
+                    else
+                        s += d ? "  c.rgb = t.rgb * 2;\n" : "  c.rgb = t.rgb;\n";
+                    s += "  c.a = p.a;\n";
+                    break;
+                case 2:  // BLEND
+                    s += std::string("  c.rgb = ((ivec3(255) - t.rgb) * p.rgb + t.rgb * u_texEnv + 255) >> ") +
+                         (d ? "7" : "8") + ";\n";
+                    s += std::string("  c.a = ") + modA + ";\n";
+                    break;
+                case 3:  // REPLACE
+                    s += d ? "  c.rgb = t.rgb * 2;\n" : "  c.rgb = t.rgb;\n";
+                    s += k.texAlpha ? "  c.a = t.a;\n" : "  c.a = p.a;\n";
+                    break;
+                default:  // ADD
+                    s += d ? "  c.rgb = (p.rgb + t.rgb) * 2;\n" : "  c.rgb = p.rgb + t.rgb;\n";
+                    s += std::string("  c.a = ") + modA + ";\n";
+                    break;
+            }
+        } else {
+            s += "  c = prim;\n";
+        }
+        // Secondary colour after the texture function, then clamp (ref §8.4 step 1).
+        s += "  c.rgb = clamp(c.rgb + sec, 0, 255);\n"
+             "  c.a = clamp(c.a, 0, 255);\n";
+        if (k.alphaTest)
+            s += "  if (!alphaCompare(c.a & u_alphaTest.y, u_alphaTest.x & u_alphaTest.y)) discard;\n";
+        if (k.fog)
+            s += "  {\n"
+                 "    int f = fogFactor();\n"
+                 "    c.rgb = (c.rgb * f + u_fogColor * (255 - f) + 255) >> 8;\n"  // ref §8.3
+                 "  }\n";
+        if (k.colorTest) {
+            if (k.colorTest - 1 == 0)
+                s += "  discard;\n";
+            else
+                s += std::string("  if (") + (k.colorTest - 1 == 2 ? "!" : "") +
+                     "all(equal(c.rgb & u_colorMask, u_colorRef & u_colorMask))) discard;\n";
+        }
+    }
+
+    // ---- stencil and (in-shader) depth test, ref §8.4 steps 6–8 ----
+    bool stencilWrites = k.stencilTest && k.fbFormat != 0;
+    if (k.stencilTest) {
+        s += "  int dstS = dst.a;\n"
+             "  int newS = dstS;\n";
+        if (depthInShader) {
+            if (k.depthRead == DepthRead::Fetch)
+                s += "  float oldDepth = gl_LastFragDepthARM;\n";
+            else
+                s += "  float oldDepth = texelFetch(u_dstDepth, pix, 0).r;\n";
+        } else {
+            s += "  float oldDepth = zOut;\n";
+        }
+        // Compare order as PPSSPP/JPCSP: (ref & mask) OP (stored & mask) (ref §8.7, §9 #1).
+        s += "  bool keepColor = false;\n"
+             "  if (!stencilCompare(u_stencil.x & u_stencil.y, dstS & u_stencil.y)) {\n";
+        if (stencilWrites) s += "    newS = stencilOp(" + std::to_string(k.sopFail) + ", dstS);\n";
+        s += "    keepColor = true;\n"
+             "  } else {\n";
+        if (depthInShader) {
+            s += "    int oldZ = int(oldDepth * 65536.0 + 0.5);\n"
+                 "    if (!depthCompare(z, oldZ)) {\n";
+            if (stencilWrites) s += "      newS = stencilOp(" + std::to_string(k.sopZFail) + ", dstS);\n";
+            s += "      keepColor = true;\n"
+                 "    } else {\n";
+            if (stencilWrites) s += "      newS = stencilOp(" + std::to_string(k.sopZPass) + ", dstS);\n";
+            s += "    }\n";
+        } else if (stencilWrites) {
+            s += "    newS = stencilOp(" + std::to_string(k.sopZPass) + ", dstS);\n";
+        }
+        s += "  }\n";
+        if (!stencilWrites) s += "  if (keepColor) discard;\n";
+    }
+
+    // ---- blending, dithering, clamp (ref §8.4 step 9, §8.3) ----
+    s += "  ivec3 rgb = c.rgb;\n";
+    if (k.blend) {
+        s += "  {\n"
+             "    ivec3 cs = c.rgb, cd = dst.rgb;\n"
+             "    int as = c.a, ad = dst.a;\n";
+        const int eq = k.blend - 1;
+        if (eq <= 2) {
+            s += "    ivec3 fa = " + blendFactor(k.blendA, true) + ";\n";
+            s += "    ivec3 fb = " + blendFactor(k.blendB, false) + ";\n";
+            s += "    ivec3 ts = ((2 * cs + 1) * (2 * fa + 1)) >> 10;\n"
+                 "    ivec3 td = ((2 * cd + 1) * (2 * fb + 1)) >> 10;\n";
+            if (eq == 0) s += "    rgb = ts + td;\n";
+            if (eq == 1) s += "    rgb = max(ts - td, ivec3(0));\n";
+            if (eq == 2) s += "    rgb = max(td - ts, ivec3(0));\n";
+        } else if (eq == 3) {
+            s += "    rgb = min(cs, cd);\n";
+        } else if (eq == 4) {
+            s += "    rgb = max(cs, cd);\n";
+        } else {
+            s += "    rgb = abs(cs - cd);\n";
+        }
+        s += "  }\n";
+    }
+    if (k.dither) s += "  rgb += ivec3(u_dither[(pix.y & 3) * 4 + (pix.x & 3)]);\n";
+    s += "  rgb = clamp(rgb, 0, 255);\n";
+
+    // ---- alpha byte = stencil (ref §8.4 step 10, §8.7) ----
+    s += "  int a = ";
+    if (k.clearMode)
+        s += k.clearAlpha ? "c.a" : (dst ? "dst.a" : "0");
+    else if (stencilWrites)
+        s += "newS";
+    else
+        s += dst ? "dst.a" : "0";
+    s += ";\n";
+
+    if (k.logicOp) {
+        s += "  {\n"
+             "    ivec3 s = rgb, d = dst.rgb;\n"
+             "    rgb = (" + logicExpr(k.logicOp - 1) + ") & 255;\n"
+             "  }\n";
+    }
+    if (k.clearMode && !k.clearColor && dst) s += "  rgb = dst.rgb;\n";
+    if (k.stencilTest && stencilWrites) s += "  if (keepColor) rgb = dst.rgb;\n";
+
+    // ---- masks, format truncation, write (ref §8.4 step 12, §8.8) ----
+    s += "  ivec4 bits = formatBits();\n"
+         "  ivec4 res = ivec4(rgb, a) & bits;\n";
+    if (dst) s += "  res = (res & ~u_keep) | (dst & bits & u_keep);\n";
+    s += "  o_color = uvec4(expandBits(res));\n";
+    if (depthInShader) {
+        s += "  gl_FragDepth = keepColor";
+        s += k.depthWrite ? " ? oldDepth : zOut;\n" : " ? oldDepth : oldDepth;\n";
+    } else {
+        s += "  gl_FragDepth = zOut;\n";
+    }
+    s += "}\n";
+    out = std::move(s);
+    return true;
+}
+
+}  // namespace ge::shadergen

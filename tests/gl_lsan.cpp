@@ -1,0 +1,12 @@
+// LeakSanitizer suppressions for test_gl: Mesa's OSMesa/llvmpipe/EGL keep a few process-lifetime
+// allocations (driver screens, LLVM state) that are never freed; they are not ge2gl leaks.
+// Only compiled into test_gl; the hook is looked up by the sanitizer runtime when it is present.
+extern "C" const char* __lsan_default_suppressions() {
+    return "leak:libOSMesa\n"
+           "leak:libLLVM\n"
+           "leak:libgallium\n"
+           "leak:libEGL_mesa\n"
+           "leak:libglapi\n"
+           "leak:swrast_dri\n"
+           "leak:libdrm\n";
+}

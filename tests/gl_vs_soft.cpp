@@ -1,0 +1,183 @@
+// Differential tests (style-anchors §7.12): the same display list through the GL translator and
+// the software model (the bit-accurate reference), comparing VRAM byte for byte.
+//
+// Through-mode scenes must match exactly. Transform-mode scenes share the software model's vertex
+// code (softmodel/transform.h), so positions and per-vertex values are identical; only GL's
+// float interpolation of Gouraud colours and texture coordinates across a triangle can differ from
+// the software model's edge-function interpolation, by at most one step on a few pixels.
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+
+#include "softmodel/soft_renderer.h"
+#include "tests/gl_fixture.h"
+
+namespace ge::gltest {
+namespace {
+
+struct Frame {
+    std::vector<u8> vram;
+};
+
+// Runs `build` on a fresh Memory with the given backend; returns the first 64 rows of VRAM.
+bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& out, std::string& err) {
+    Memory mem;
+    std::unique_ptr<Renderer> r;
+    if (gl) {
+        r = gl::createGlRenderer(mem, gl::GlOptions{}, err);
+        if (!r) return false;
+    } else {
+        soft::SoftOptions so;
+        so.threads = 1;
+        r = soft::createSoftRenderer(mem, so);
+    }
+    GeEngine eng(mem, r.get());
+    ListBuilder b(&mem);
+    build(b);
+    b.finish();
+    const u32 list = b.placeList();
+    eng.startList(list, 0);
+    eng.run();
+    r->flushToMemory();
+    out.vram.assign(mem.vram(), mem.vram() + 0x200000);
+    return true;
+}
+
+void frameSetup(ListBuilder& b, u32 fmt = GE_FORMAT_8888) {
+    b.drawBuffer(fmt, 0, 64);
+    b.depthBuffer(0x100000, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.offset(2048 - 32, 2048 - 32);
+    b.viewport(2048, 2048, 64, 64);
+    b.depthRange(65535, 0);
+}
+
+// Max per-byte difference and count of differing bytes over the whole VRAM.
+void compare(const Frame& a, const Frame& b, int& maxDiff, size_t& differing) {
+    maxDiff = 0;
+    differing = 0;
+    for (size_t i = 0; i < a.vram.size(); ++i) {
+        const int d = std::abs(int(a.vram[i]) - int(b.vram[i]));
+        if (d) ++differing, maxDiff = std::max(maxDiff, d);
+    }
+}
+
+void expectSame(const std::function<void(ListBuilder&)>& build, int allowedMax, size_t allowedBytes) {
+    Frame g, s;
+    std::string err;
+    if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
+    renderWith(false, build, s, err);
+    int maxDiff;
+    size_t differing;
+    compare(g, s, maxDiff, differing);
+    EXPECT_LE(maxDiff, allowedMax);
+    EXPECT_LE(differing, allowedBytes);
+    for (size_t i = 0; i < g.vram.size() && (maxDiff > allowedMax || differing > allowedBytes); i += 4)
+        if (std::memcmp(&g.vram[i], &s.vram[i], 4) != 0) {
+            ADD_FAILURE() << "first difference at byte 0x" << std::hex << i << ": gl " << readLE32(&g.vram[i])
+                          << " soft " << readLE32(&s.vram[i]);
+            break;
+        }
+}
+
+void sprites(ListBuilder& b, bool bilinear) {
+    frameSetup(b);
+    b.clear(CLEAR_COLOR | CLEAR_STENCIL | CLEAR_DEPTH, 0x00302010, 0x8000, 0x20);
+    std::vector<u32> tex(16 * 16);
+    for (int i = 0; i < 256; ++i) tex[size_t(i)] = u32(i * 0x010305) | (u32(i) << 24);
+    const u32 addr = b.place(tex.data(), 1024);
+    b.texMode(GE_TFMT_8888, 0, false);
+    b.setTexture(0, addr, 16, 16, 16);
+    b.texFunc(0, true);
+    b.texFilter(bilinear ? 1 : 0, bilinear ? 1 : 0);
+    b.enable(GE_CMD_TME, true);
+    b.enable(GE_CMD_ABE, true);
+    b.blendFunc(0, 2, 3);
+    b.enable(GE_CMD_DTE, true);
+    const int m[16] = {-4, 0, -3, 1, 2, -2, 3, -1, -3, 1, -4, 0, 3, -1, 2, -2};
+    b.setDither(m);
+    const u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[6];
+    // Scale 1, scale 2, and a mirrored one; with bilinear filtering the odd sizes matter too.
+    const float pos[3][4] = {{2, 3, 18, 19}, {20, 10, 52, 42}, {61, 50, 45, 34}};
+    for (int i = 0; i < 3; ++i) {
+        v[2 * i].x = pos[i][0], v[2 * i].y = pos[i][1], v[2 * i].u = 0, v[2 * i].v = 0;
+        v[2 * i + 1].x = pos[i][2], v[2 * i + 1].y = pos[i][3], v[2 * i + 1].u = 16, v[2 * i + 1].v = 16;
+        v[2 * i].color = v[2 * i + 1].color = 0xC0FFE0A0u - u32(i) * 0x101010u;
+    }
+    const std::vector<u8> data = packVertices(vtype, v, 6);
+    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 6, nullptr, data.data());
+}
+
+TEST(GlVsSoft, ThroughModeSpritesAreIdentical) {
+    expectSame([](ListBuilder& b) { sprites(b, false); }, 0, 0);
+}
+
+TEST(GlVsSoft, BilinearSpritesWithinOneWeightStep) {
+    // Texture coordinates across a rectangle are interpolated by GL in float and by the software
+    // model in double: a sample exactly on a 1/16-texel boundary may take the neighbouring 4-bit
+    // weight, changing a channel by at most (Δtexel)/16 ≈ 16 here, on a few pixels.
+    expectSame([](ListBuilder& b) {
+        sprites(b, true);
+        // Stretch one more sprite by a non-integer factor.
+        const u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        BuildVertex v[2];
+        v[0].x = 5, v[0].y = 40, v[1].x = 46, v[1].y = 63, v[1].u = 16, v[1].v = 16;
+        const std::vector<u8> data = packVertices(vtype, v, 2);
+        b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+    }, 0x20, 64 * 64 * 4 / 20);
+}
+
+void litMesh(ListBuilder& b) {
+    frameSetup(b, GE_FORMAT_565);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0x00000000, 0, 0);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    // A simple perspective projection looking down −Z.
+    const float proj[16] = {1.5f, 0, 0, 0, 0, 1.5f, 0, 0, 0, 0, -1.01f, -1, 0, 0, -0.2f, 0};
+    b.setMatrix(GeMatrix::World, id);
+    b.setMatrix(GeMatrix::View, id);
+    b.setMatrix(GeMatrix::Proj, proj);
+    b.enable(GE_CMD_LTE, true);
+    b.enable(GE_CMD_LE0, true);
+    const float lpos[3] = {0.3f, 0.5f, 1.0f};
+    b.light(0, 0, 1, lpos);
+    b.lightColor(0, LIGHT_AMBIENT | LIGHT_DIFFUSE | LIGHT_SPECULAR, 0xFFFFFF);
+    b.ambient(0xFF202020);
+    b.materialAmbient(0xFF404040);
+    b.materialDiffuse(0x80C0FF);
+    b.materialSpecular(0xFFFFFF);
+    b.specularPower(8.0f);
+    b.enable(GE_CMD_ZTE, true);
+    b.depthFunc(7);
+    b.enable(GE_CMD_DTE, true);
+    b.enable(GE_CMD_BCE, false);
+    // A 4×4 grid strip mesh bent in Z, with normals.
+    const u32 vtype = vt::NRM_F | vt::POS_F;
+    std::vector<BuildVertex> v;
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col <= 4; ++col)
+            for (int k = 0; k < 2; ++k) {
+                BuildVertex bv;
+                bv.x = -0.8f + 0.4f * float(col);
+                bv.y = -0.8f + 0.4f * float(row + k);
+                bv.z = -2.0f - 0.3f * bv.x * bv.x;
+                bv.nx = 0.6f * bv.x, bv.ny = 0.1f, bv.nz = 1.0f;
+                v.push_back(bv);
+            }
+    const std::vector<u8> data = packVertices(vtype, v.data(), u32(v.size()));
+    for (int row = 0; row < 4; ++row) {
+        const u32 addr = b.place(data.data() + size_t(row) * 10 * VertexLayout::fromVtype(vtype).size,
+                                 10 * VertexLayout::fromVtype(vtype).size);
+        b.drawArray(GE_PRIM_TRIANGLE_STRIP, vtype, 10, 0, addr);
+    }
+}
+
+TEST(GlVsSoft, LitPerspectiveMeshMatchesWithinInterpolation) {
+    // 16-bit output: a one-step difference in an 8-bit colour before truncation shows as at most
+    // one step of the stored field, i.e. a byte difference of up to 0x08 in the packed pixel.
+    expectSame(litMesh, 0x21, 64 * 64 * 2 / 50);
+}
+
+}  // namespace
+}  // namespace ge::gltest

@@ -1,0 +1,110 @@
+// Render targets as caches of emulated VRAM (style-anchors §8.7: VRAM is the source of truth).
+//
+// A colour target is (VRAM address, stride, format) ↔ a 1024×1024 RGBA8UI texture whose row y is
+// drawing row y; it holds stored pixels (16-bit formats bit-replicated, i.e. what a GE read
+// expands to). A depth target is (address, stride) ↔ a D32F texture holding z/65536.
+//
+// Invalidation / write-back contract:
+//  - rows [0, rowsValid) of a target mirror VRAM or are newer; rows are uploaded from VRAM the
+//    first time a draw needs them;
+//  - `dirty` bounds the pixels drawn since the last write-back; writeBack() converts them
+//    exactly (truncation to the format, u16 depth) into VRAM;
+//  - a target claims the bytes of its valid rows; claiming bytes another target holds writes that
+//    target back first and then drops or shortens it (so two targets never alias);
+//  - memoryWritten() re-uploads only the written byte span, so pixels drawn elsewhere survive;
+//  - syncRange() writes back every dirty target overlapping a byte range (texture reads,
+//    transfers, host reads).
+#pragma once
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "hle/ge_state.h"
+#include "hle/memory.h"
+#include "translator/gl_context.h"
+
+namespace ge::gl {
+
+constexpr int kTargetSize = 1024;
+
+struct Rect {
+    int x0 = 0, y0 = 0, x1 = -1, y1 = -1;  // inclusive; empty when x1 < x0
+    bool empty() const { return x1 < x0 || y1 < y0; }
+    void add(const Rect& r) {
+        if (r.empty()) return;
+        if (empty()) {
+            *this = r;
+            return;
+        }
+        x0 = std::min(x0, r.x0), y0 = std::min(y0, r.y0), x1 = std::max(x1, r.x1), y1 = std::max(y1, r.y1);
+    }
+};
+
+struct Target {
+    bool depth = false;
+    u32 addr = 0;    // normalised linear VRAM address (0x04000000 + offset)
+    u32 stride = 0;  // pixels
+    GeBufferFormat fmt = GE_FORMAT_8888;  // colour only
+    GLuint tex = 0;
+    int rowsValid = 0;
+    Rect dirty;
+    u32 bpp() const { return depth ? 2 : (fmt == GE_FORMAT_8888 ? 4 : 2); }
+    u32 width() const { return std::min<u32>(stride, kTargetSize); }
+    u32 end() const { return addr + u32(rowsValid) * stride * bpp(); }
+};
+
+// Linear VRAM address for any of the four mirrors (drawing treats them as the same bytes, §7.3).
+u32 vramLinear(u32 addr);
+
+class FramebufferManager {
+public:
+    FramebufferManager(const GlContext& ctx, Memory& mem);
+    ~FramebufferManager();
+
+    // Targets for the current draw; rows [0, rows) valid. Null when the buffer is unusable
+    // (stride 0). The returned pointers stay valid until the next call that creates targets.
+    Target* colorTarget(u32 addr, u32 stride, GeBufferFormat fmt, int rows);
+    Target* depthTarget(u32 addr, u32 stride, int rows);
+    // Binds the draw FBO with these attachments (depth may be null).
+    void bindDraw(Target* color, Target* depth);
+    GLuint drawFbo() const { return drawFbo_; }
+
+    void writeBack(Target& t);
+    // Writes back dirty targets overlapping [addr, addr+size) (size 0: from addr to VRAM end).
+    void syncRange(u32 addr, u32 size);
+    // Guest memory changed under the targets: re-upload the overlapping spans.
+    void memoryWritten(u32 addr, u32 size);
+    void flushAll();
+    u64 readbacks() const { return readbacks_; }
+    u64 writeBacks() const { return writeBacks_; }  // write-backs that changed VRAM (generation bumps)
+    const std::vector<std::unique_ptr<Target>>& targets() const { return targets_; }
+    // Increments whenever this class changed GL state the renderer caches (program, VAO, depth,
+    // masks, scissor, framebuffer binding).
+    u64 clobbers() const { return clobbers_; }
+
+private:
+    Target* find(bool depth, u32 addr, u32 stride, GeBufferFormat fmt);
+    Target* create(bool depth, u32 addr, u32 stride, GeBufferFormat fmt);
+    void ensureRows(Target& t, int rows);
+    // Frees [begin, end) for `owner`: other targets there are written back and shortened/dropped.
+    void claim(u32 begin, u32 end, const Target* owner);
+    void uploadRows(Target& t, int y0, int y1);
+    void uploadSpan(Target& t, u32 begin, u32 end);
+    void uploadRect(Target& t, int x0, int y0, int w, int h);
+    void destroy(Target* t);
+    bool buildDepthProgram();
+
+    const GlContext& ctx_;
+    Memory& mem_;
+    std::vector<std::unique_ptr<Target>> targets_;
+    GLuint drawFbo_ = 0, readFbo_ = 0, utilFbo_ = 0;
+    GLuint boundColor_ = 0, boundDepth_ = ~0u;
+    // Depth upload: R16UI staging texture drawn into the depth target by a tiny program.
+    GLuint depthProg_ = 0, depthStage_ = 0, emptyVao_ = 0;
+    std::vector<u32> pixels_;
+    std::vector<float> depthPixels_;
+    std::vector<u16> depth16_;
+    u64 readbacks_ = 0, writeBacks_ = 0, clobbers_ = 0;
+};
+
+}  // namespace ge::gl

@@ -1,0 +1,52 @@
+// Headless GL context creation (OSMesa core profile, EGL surfaceless) or adoption of the host's
+// current context, plus capability detection. One GlContext per renderer; the GL function table
+// lives here (no globals).
+#pragma once
+#include <memory>
+#include <string>
+
+#include "shadergen/shader_keys.h"
+#include "translator/gl_funcs.h"
+
+namespace ge::gl {
+
+enum class ContextKind;
+
+struct GlCaps {
+    int major = 0, minor = 0;
+    std::string version, renderer;
+    bool fbFetch = false;         // GL_EXT_shader_framebuffer_fetch (coherent)
+    bool depthFetch = false;      // GL_ARM_shader_framebuffer_fetch_depth_stencil
+    bool textureBarrier = false;  // glTextureBarrier (GL 4.5 / ARB / NV)
+    bool clipControl = false;     // GL_ARB_clip_control (detected; not needed: see shader_gen.cpp)
+    bool dualSourceBlend = false; // GL_ARB_blend_func_extended (detected; blending is in-shader)
+    bool bufferStorage = false;   // GL_ARB_buffer_storage (detected)
+    bool programBinary = false;   // GL_ARB_get_program_binary with ≥ 1 format
+    // What the shader generator may use, after the `baseline` switch.
+    shadergen::HostCaps hostCaps(bool baseline) const;
+    std::string summary() const;
+};
+
+class GlContext {
+public:
+    ~GlContext();
+    // Creates (or adopts, for Current) a context, makes it current and loads the functions.
+    static std::unique_ptr<GlContext> create(ContextKind kind, std::string& err);
+    bool makeCurrent();
+    const GlFuncs& f() const { return funcs_; }
+    const GlCaps& caps() const { return caps_; }
+
+private:
+    GlContext() = default;
+    bool init(std::string& err);
+
+    ContextKind kind_{};
+    void* osmesa_ = nullptr;   // OSMesaContext
+    void* eglDisplay_ = nullptr;
+    void* eglContext_ = nullptr;
+    unsigned char dummy_[4 * 4 * 4] = {};  // OSMesa needs a colour buffer; we render to FBOs
+    GlFuncs funcs_;
+    GlCaps caps_;
+};
+
+}  // namespace ge::gl

@@ -1,0 +1,384 @@
+// CPU vertex processing for the GL path (see vertex_pipeline.h).
+#include "translator/vertex_pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "hle/spline.h"
+#include "softmodel/clip.h"
+
+namespace ge::gl {
+
+namespace {
+
+constexpr size_t kFragmentBuffer = 1024;
+
+GlVertex toGl(const soft::ScreenVertex& v, bool perspective) {
+    GlVertex g;
+    g.x = float(v.x) / 16.0f;
+    g.y = float(v.y) / 16.0f;
+    g.z = float(std::clamp(v.z, 0, 65535));
+    std::memcpy(g.color, v.color, 4);
+    g.color2[0] = v.secondary[0], g.color2[1] = v.secondary[1], g.color2[2] = v.secondary[2];
+    g.color2[3] = 0;
+    // Texture coordinates are perspective-correct: s/w, t/w, q/w interpolate linearly in screen
+    // space and the fragment shader divides (ref §8.1). Through mode and rectangles have w = 1.
+    const float w = perspective && std::isfinite(v.w) && v.w != 0.0f ? v.w : 1.0f;
+    const float k = 1.0f / w;
+    g.tex[0] = v.s * k, g.tex[1] = v.t * k, g.tex[2] = v.q * k, g.tex[3] = w;
+    g.fog = v.fog;
+    return g;
+}
+
+PrimBounds boundsOf(const GlVertex* v, int n) {
+    float x0 = v[0].x, x1 = v[0].x, y0 = v[0].y, y1 = v[0].y;
+    for (int i = 1; i < n; ++i) {
+        x0 = std::min(x0, v[i].x), x1 = std::max(x1, v[i].x);
+        y0 = std::min(y0, v[i].y), y1 = std::max(y1, v[i].y);
+    }
+    auto clampI = [](float f) { return int(std::clamp(f, -70000.0f, 70000.0f)); };
+    return PrimBounds{clampI(std::floor(x0)) - 1, clampI(std::floor(y0)) - 1, clampI(std::ceil(x1)),
+                      clampI(std::ceil(y1)), 0};
+}
+
+}  // namespace
+
+VertexSettings VertexSettings::fromState(const GeState& st) {
+    VertexSettings vs;
+    vs.gouraud = st.SHADE_gouraud();
+    vs.cull = st.BCE_on() && !st.isClearMode();
+    vs.cullCcw = st.CULL_ccw();
+    vs.texture = st.TME_on() && !st.isClearMode();
+    vs.fog = st.FGE_on() && !st.isThrough();
+    // Scissor ∩ REGION2 (ref §8.6).
+    vs.clip[0] = int(st.SCISSOR1_x());
+    vs.clip[1] = int(st.SCISSOR1_y());
+    vs.clip[2] = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
+    vs.clip[3] = int(std::min(st.SCISSOR2_y(), st.REGION2_y()));
+    return vs;
+}
+
+soft::RasterParams VertexPipeline::rasterParams() const {
+    soft::RasterParams rp;
+    rp.clipX1 = vs_.clip[0], rp.clipY1 = vs_.clip[1], rp.clipX2 = vs_.clip[2], rp.clipY2 = vs_.clip[3];
+    rp.gouraud = vs_.gouraud;
+    rp.textured = vs_.texture;
+    rp.needLod = vs_.texture && st_->TLEVEL_mode() == 0;
+    rp.needW = vs_.texture && st_->TLEVEL_mode() == 2;
+    rp.fog = vs_.fog;
+    rp.texW0 = float(st_->textureWidth(0));
+    rp.texH0 = float(st_->textureHeight(0));
+    return rp;
+}
+
+bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+                            const soft::ScreenVertex& c) const {
+    // Zero-area triangles draw nothing (ref §8.11). Positive area = clockwise on screen (y
+    // down); CULL 0 culls clockwise, 1 counter-clockwise (ref §3.6).
+    const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
+    if (area == 0) return true;
+    if (!vs_.cull) return false;
+    return vs_.cullCcw ? area < 0 : area > 0;
+}
+
+void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+                                  const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
+    const bool persp = !ts_.through;
+    GlVertex g[3] = {toGl(a, persp), toGl(b, persp), toGl(c, persp)};
+    if (!vs_.gouraud) {
+        // Flat shading: the provoking (last) vertex's colours (ref §8.1).
+        for (GlVertex& v : g) {
+            std::memcpy(v.color, prov.color, 4);
+            v.color2[0] = prov.secondary[0], v.color2[1] = prov.secondary[1], v.color2[2] = prov.secondary[2];
+        }
+    }
+    out_->tris.insert(out_->tris.end(), g, g + 3);
+    PrimBounds bb = boundsOf(g, 3);
+    bb.joinPrev = joinPrev;
+    out_->triBounds.push_back(bb);
+}
+
+void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
+    const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
+    const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
+    if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ref §8.11)
+    // Texture orientation from where v0 lies relative to v1 (ref §8.2 table); colour, Z and fog
+    // from the second vertex; coordinates linear across the rectangle (w = 1). Covering
+    // [x1, x2) × [y1, y2) is exactly GL's top-left rule on the two triangles.
+    const bool left = v0.x < v1.x, above = v0.y < v1.y;
+    auto corner = [&](int fx, int fy) {
+        soft::ScreenVertex c = v1;
+        c.x = fx ? xr : xl;
+        c.y = fy ? yb : yt;
+        c.w = 1.0f;
+        const soft::ScreenVertex* sFrom;
+        const soft::ScreenVertex* tFrom;
+        if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
+        else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
+        else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
+        else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
+        c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
+        return toGl(c, false);
+    };
+    GlVertex tl = corner(0, 0), tr = corner(1, 0), bl = corner(0, 1), br = corner(1, 1);
+    GlVertex q[6] = {tl, tr, bl, tr, br, bl};
+    out_->tris.insert(out_->tris.end(), q, q + 6);
+    PrimBounds bb = boundsOf(q, 6);
+    out_->triBounds.push_back(bb);
+    bb.joinPrev = 1;
+    out_->triBounds.push_back(bb);
+}
+
+void VertexPipeline::sinkFlush(void* ctx, const soft::Fragment* f, size_t n) {
+    static_cast<VertexPipeline*>(ctx)->emitFragments(f, n);
+}
+
+void VertexPipeline::emitFragments(const soft::Fragment* f, size_t n) {
+    // Each fragment of a line or point becomes a one-pixel quad with the fragment's attributes:
+    // the GE's line DDA (shared with the software model) decides coverage, not GL.
+    for (size_t i = 0; i < n; ++i) {
+        GlVertex g;
+        g.z = float(f[i].z);
+        std::memcpy(g.color, f[i].color, 4);
+        g.color2[0] = f[i].secondary[0], g.color2[1] = f[i].secondary[1], g.color2[2] = f[i].secondary[2];
+        g.tex[0] = f[i].s, g.tex[1] = f[i].t, g.tex[2] = 1.0f, g.tex[3] = f[i].w;
+        // The byte back from the shader's floor(f·256) (ref §8.9).
+        g.fog = (float(f[i].fog) + 0.5f) / 256.0f;
+        const float x = float(f[i].x), y = float(f[i].y);
+        GlVertex q[6] = {g, g, g, g, g, g};
+        q[0].x = x, q[0].y = y;
+        q[1].x = x + 1, q[1].y = y;
+        q[2].x = x, q[2].y = y + 1;
+        q[3].x = x + 1, q[3].y = y;
+        q[4].x = x + 1, q[4].y = y + 1;
+        q[5].x = x, q[5].y = y + 1;
+        out_->tris.insert(out_->tris.end(), q, q + 6);
+        PrimBounds bb{f[i].x, f[i].y, f[i].x, f[i].y, 0};
+        out_->triBounds.push_back(bb);
+        bb.joinPrev = 1;
+        out_->triBounds.push_back(bb);
+    }
+}
+
+void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic) {
+    const soft::ClipVertex& a = cverts_[ia];
+    const soft::ClipVertex& b = cverts_[ib];
+    const soft::ClipVertex& c = cverts_[ic];
+    const soft::ClipVertex* v[3] = {&a, &b, &c};
+    if (!a.valid || !b.valid || !c.valid || soft::discardPrimitive(ts_, v, 3)) return;
+    if (!ts_.through) {
+        if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ref §8.5
+        if (ts_.clipEnable && (soft::beyondNear(a) || soft::beyondNear(b) || soft::beyondNear(c))) {
+            soft::ClipVertex poly[4];
+            const int n = soft::clipTriangleNear(ts_, a, b, c, poly);
+            int join = 0;
+            for (int k = 1; k + 1 < n; ++k) {
+                if (culled(poly[0].sv, poly[k].sv, poly[k + 1].sv)) continue;
+                // Flat shading keeps the original provoking vertex's colour.
+                emitTriangle(poly[0].sv, poly[k].sv, poly[k + 1].sv, c.sv, join);
+                join = 1;
+            }
+            return;
+        }
+    }
+    if (culled(a.sv, b.sv, c.sv)) return;
+    emitTriangle(a.sv, b.sv, c.sv, c.sv, 0);
+}
+
+void VertexPipeline::rectangle(u32 ia, u32 ib) {
+    const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
+    if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
+    emitRect(v[0]->sv, v[1]->sv);
+}
+
+void VertexPipeline::line(u32 ia, u32 ib) {
+    const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
+    if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
+    soft::ClipVertex a = *v[0], b = *v[1];
+    if (!ts_.through && ts_.clipEnable && (soft::beyondNear(a) || soft::beyondNear(b)))
+        if (!soft::clipLineNear(ts_, a, b)) return;
+    fragBuf_.resize(kFragmentBuffer);
+    soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+    soft::rasterLine(rasterParams(), a.sv, b.sv, soft::Band{}, sink);
+    sink.flush();
+}
+
+void VertexPipeline::point(u32 ia) {
+    const soft::ClipVertex* v[1] = {&cverts_[ia]};
+    if (!v[0]->valid || soft::discardPrimitive(ts_, v, 1)) return;
+    fragBuf_.resize(kFragmentBuffer);
+    soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+    soft::rasterPoint(rasterParams(), v[0]->sv, soft::Band{}, sink);
+    sink.flush();
+}
+
+void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
+    const size_t n = seq.size();
+    std::vector<u32> keep;
+    switch (prim) {
+        case GE_PRIM_POINTS:
+            for (size_t i = 0; i < n; ++i) point(seq[i]);
+            break;
+        case GE_PRIM_LINES:
+            for (size_t i = 0; i + 1 < n; i += 2) line(seq[i], seq[i + 1]);
+            if (n & 1) keep.push_back(seq[n - 1]);
+            break;
+        case GE_PRIM_LINE_STRIP:
+            for (size_t i = 1; i < n; ++i) line(seq[i - 1], seq[i]);
+            if (n) keep.push_back(seq[n - 1]);
+            break;
+        case GE_PRIM_TRIANGLES:
+            for (size_t i = 0; i + 2 < n; i += 3) triangle(seq[i], seq[i + 1], seq[i + 2]);
+            for (size_t i = n - n % 3; i < n; ++i) keep.push_back(seq[i]);
+            break;
+        case GE_PRIM_TRIANGLE_STRIP:
+            // Every second triangle is wound the other way round; the newest vertex provokes.
+            for (size_t i = 2; i < n; ++i) {
+                if (!stripOdd_) triangle(seq[i - 2], seq[i - 1], seq[i]);
+                else triangle(seq[i - 1], seq[i - 2], seq[i]);
+                stripOdd_ = !stripOdd_;
+            }
+            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
+            break;
+        case GE_PRIM_TRIANGLE_FAN:
+            for (size_t i = 2; i < n; ++i) triangle(seq[0], seq[i - 1], seq[i]);
+            if (n >= 2) keep = {seq[0], seq[n - 1]};
+            else if (n == 1) keep = {seq[0]};
+            break;
+        case GE_PRIM_RECTANGLES:
+            for (size_t i = 0; i + 1 < n; i += 2) rectangle(seq[i], seq[i + 1]);
+            if (n & 1) keep.push_back(seq[n - 1]);
+            break;
+        default: break;
+    }
+    if (keepPending) {
+        pending_.clear();
+        for (u32 k : keep) pending_.push_back(cverts_[k]);
+        pendingPrim_ = prim;
+    }
+}
+
+bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
+                                 Geometry& out, std::string* err) {
+    st_ = &st;
+    vs_ = vs;
+    out_ = &out;
+    if (!p.continuation) {
+        pending_.clear();
+        stripOdd_ = false;
+    }
+    VertexReader reader(mem, st, p.vtype);
+    ts_ = soft::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
+    // The still-open vertices of the previous PRIM come first (type 7, ref §3.2).
+    cverts_.assign(pending_.begin(), pending_.end());
+    std::vector<u32> indices;
+    if (!reader.readIndices(p.indexAddr, p.count, indices)) {
+        if (err) *err = "unreadable index data";
+        pending_.clear();
+        return false;
+    }
+    const bool skin = reader.hasWeights() && !reader.through();
+    auto process = [&](u32 index, soft::ClipVertex& cv) {
+        DecodedVertex dv;
+        const bool ok = reader.read(p.vertexAddr, index, dv);
+        if (ok && skin) applySkinning(st, p.vtype, dv);
+        soft::transformVertex(ts_, dv, cv);
+        cv.valid = ok && reader.hasPosition();  // no position: dropped (ref §8.11)
+    };
+    seq_.clear();
+    for (u32 i = 0; i < pending_.size(); ++i) seq_.push_back(i);
+    if (!indices.empty()) {
+        u32 lo = ~0u, hi = 0;
+        for (u32 i : indices) lo = std::min(lo, i), hi = std::max(hi, i);
+        const size_t first = cverts_.size();
+        if (u64(hi) - lo < u64(p.count) * 2 + 64) {
+            // Dense index range: each used vertex transformed once.
+            std::vector<u8> used(size_t(hi - lo) + 1, 0);
+            for (u32 i : indices) used[i - lo] = 1;
+            cverts_.resize(first + used.size());
+            for (size_t k = 0; k < used.size(); ++k)
+                if (used[k]) process(lo + u32(k), cverts_[first + k]);
+            for (u32 i : indices) seq_.push_back(u32(first + (i - lo)));
+        } else {
+            cverts_.resize(first + indices.size());
+            for (size_t k = 0; k < indices.size(); ++k) {
+                process(indices[k], cverts_[first + k]);
+                seq_.push_back(u32(first + k));
+            }
+        }
+    }
+    assemble(p.prim, seq_, true);
+    return true;
+}
+
+bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
+                                  Geometry& out, std::string* err) {
+    st_ = &st;
+    vs_ = vs;
+    out_ = &out;
+    pending_.clear();
+    TessOutput tess;
+    if (!tessellatePatch(mem, st, p, tess, err)) return false;
+    if (tess.verts.empty()) return true;
+    VertexReader reader(mem, st, p.vtype);
+    // The tessellator generates normals when lighting needs them (ref §3.2).
+    ts_ = soft::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal() || st.LTE_on());
+    cverts_.resize(tess.verts.size());
+    for (size_t i = 0; i < tess.verts.size(); ++i) {
+        soft::transformVertex(ts_, tess.verts[i], cverts_[i]);
+        cverts_[i].valid = true;
+    }
+    seq_.clear();
+    for (u32 i : tess.indices)
+        if (i < tess.verts.size()) seq_.push_back(i);
+    const bool odd = stripOdd_;
+    stripOdd_ = false;
+    assemble(tess.prim, seq_, false);
+    stripOdd_ = odd;
+    return true;
+}
+
+void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out) {
+    st_ = &st;
+    vs_ = vs;
+    out_ = &out;
+    // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
+    ts_ = soft::TransformState{};
+    ts_.through = true;
+    const bool through = st.isThrough();
+    const bool projective = !through && st.TMAP_mode() == 1;
+    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
+    cverts_.resize(p.vertices.size());
+    seq_.clear();
+    for (size_t i = 0; i < p.vertices.size(); ++i) {
+        const ImmVertex& iv = p.vertices[i];
+        soft::ClipVertex& cv = cverts_[i];
+        cv = soft::ClipVertex{};
+        soft::ScreenVertex& sv = cv.sv;
+        auto to16 = [](float v) {
+            float t = v * 16.0f;
+            if (!(t > -1048576.0f)) t = -1048576.0f;
+            if (t > 1048576.0f) t = 1048576.0f;
+            return int(t);
+        };
+        sv.x = to16(iv.x);
+        sv.y = to16(iv.y);
+        sv.z = iv.z;
+        // Through mode: texels divided by the level-0 size (ref §8.10); else normalised S, T, Q.
+        sv.s = through ? iv.s * invW : iv.s;
+        sv.t = through ? iv.t * invH : iv.t;
+        sv.q = projective ? iv.q : 1.0f;
+        sv.w = 1.0f;
+        sv.fog = float(iv.fog) / 255.0f;  // byte 255 = no fog; floor(f·256) gives the byte back
+        std::memcpy(sv.color, iv.color, 4);
+        std::memcpy(sv.secondary, iv.secondary, 3);
+        seq_.push_back(u32(i));
+    }
+    const bool odd = stripOdd_;
+    stripOdd_ = false;
+    assemble(p.prim, seq_, false);
+    stripOdd_ = odd;
+}
+
+}  // namespace ge::gl

@@ -1,0 +1,108 @@
+// CPU vertex processing for the GL path: decode (shared decoder), then the software model's
+// reference transform, lighting, texture-coordinate generation, fog, clipping and discard rules
+// (softmodel/transform.h, clip.h), then primitive assembly into GL-ready vertices in drawing
+// coordinates.
+//
+// Why on the CPU: the GE rounds screen positions to 1/16 pixel (ref §8.1), drops rather than
+// clips primitives outside the 4096² screen (§8.5), lights in fixed point (§8.3) and decides
+// rectangles' texture orientation from vertex order (§8.2) — none of which a GL vertex shader
+// reproduces exactly. Sharing the software model's code keeps both backends' geometry identical
+// (style-anchors §8.8: one reference implementation). GL then only rasterises triangles, with
+// positions already on the GE's grid; its fill convention equals the GE's top-left rule.
+// Lines and points use the software model's rasteriser (GL line rules differ from the GE's DDA):
+// each of their fragments becomes a one-pixel quad carrying that fragment's exact attributes.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "hle/ge_state.h"
+#include "hle/memory.h"
+#include "hle/renderer.h"
+#include "hle/vertex_decoder.h"
+#include "softmodel/raster.h"
+#include "softmodel/transform.h"
+
+namespace ge::gl {
+
+// One vertex as the generated vertex shader reads it (shader_gen.h attribute table).
+struct GlVertex {
+    float x = 0, y = 0, z = 0;  // drawing coordinates (1/16 grid), screen Z 0..65535
+    u8 color[4] = {};
+    u8 color2[4] = {};            // secondary RGB, [3] unused
+    float tex[4] = {0, 0, 1, 1};  // s·k, t·k, q·k, w (k = 1/w for perspective, else 1)
+    float fog = 1;
+};
+static_assert(sizeof(GlVertex) == 40);
+
+// Per-triangle pixel bounds (for dirty tracking and for ordering destination reads between
+// overlapping primitives).
+struct PrimBounds {
+    int x0, y0, x1, y1;  // inclusive pixel rectangle (may be empty: x1 < x0)
+    // 1 when this triangle and the previous one come from one convex shape (rectangle, pixel
+    // quad, clipped polygon): they never cover the same pixel, so no ordering is needed.
+    int joinPrev;
+};
+struct Geometry {
+    std::vector<GlVertex> tris;  // 3 per triangle
+    std::vector<PrimBounds> triBounds;
+    void clear() {
+        tris.clear();
+        triBounds.clear();
+    }
+    bool empty() const { return tris.empty(); }
+};
+
+// Per-draw switches (immediate-mode vertices override some, ref §3.12).
+struct VertexSettings {
+    bool gouraud = true;
+    bool cull = false;     // BCE (never in clear mode)
+    bool cullCcw = false;  // CULL bit
+    bool texture = false;
+    bool fog = false;
+    int clip[4] = {0, 0, -1, -1};  // inclusive clip rectangle for lines/points (scissor ∩ region)
+    static VertexSettings fromState(const GeState& st);
+};
+
+class VertexPipeline {
+public:
+    // Decodes and processes a PRIM draw into `out` (appending). Returns false + err on bad
+    // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ref §3.2).
+    bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
+                     Geometry& out, std::string* err);
+    // Tessellated patch (hle/spline.h) through the same path.
+    bool processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
+                      Geometry& out, std::string* err);
+    // Immediate vertices, already in drawing coordinates (ref §3.12).
+    void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
+
+private:
+    void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
+    void triangle(u32 a, u32 b, u32 c);
+    void rectangle(u32 a, u32 b);
+    void line(u32 a, u32 b);
+    void point(u32 a);
+    void emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c,
+                      const soft::ScreenVertex& prov, int joinPrev);
+    void emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
+    void emitFragments(const soft::Fragment* f, size_t n);
+    bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
+    soft::RasterParams rasterParams() const;
+    static void sinkFlush(void* ctx, const soft::Fragment* f, size_t n);
+
+    // Per-draw context (valid during one process* call).
+    const GeState* st_ = nullptr;
+    VertexSettings vs_;
+    soft::TransformState ts_;
+    Geometry* out_ = nullptr;
+
+    std::vector<DecodedVertex> decoded_;
+    std::vector<soft::ClipVertex> cverts_;
+    std::vector<u32> seq_;
+    // PRIM type 7: vertices still open from the previous draw and the strip parity.
+    std::vector<soft::ClipVertex> pending_;
+    GePrimType pendingPrim_ = GE_PRIM_POINTS;
+    bool stripOdd_ = false;
+    std::vector<soft::Fragment> fragBuf_;
+};
+
+}  // namespace ge::gl
