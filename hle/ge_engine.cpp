@@ -156,17 +156,7 @@ void GeEngine::execute(u32 word) {
     ++stats_.commands;
 
     // Immediate-mode vertices end at the first command that is not part of them.
-    if (!immVerts_.empty() && (op < GE_CMD_X2 || op > GE_CMD_I2)) {
-        ImmPacket pkt;
-        pkt.state = &state_;
-        pkt.dirty = takeDirty();
-        pkt.prim = immPrim_;
-        pkt.flags = immFlags_;
-        pkt.vertices.swap(immVerts_);
-        ++stats_.immediates;
-        renderer_->drawImmediate(pkt);
-        immVerts_.clear();
-    }
+    if (!immVerts_.empty() && (op < GE_CMD_X2 || op > GE_CMD_I2)) flushImmediate();
 
     const u32 prev = state_.regs[op];
     state_.regs[op] = word;
@@ -426,6 +416,18 @@ void GeEngine::doClutLoad(u32 arg) {
     renderer_->clutLoaded(state_);
 }
 
+void GeEngine::flushImmediate() {
+    ImmPacket pkt;
+    pkt.state = &state_;
+    pkt.dirty = takeDirty();
+    pkt.prim = immPrim_;
+    pkt.flags = immFlags_;
+    pkt.vertices.swap(immVerts_);
+    immVerts_.clear();
+    ++stats_.immediates;
+    renderer_->drawImmediate(pkt);
+}
+
 void GeEngine::doImmediate(u32 arg) {
     ImmVertex v;
     const bool through = state_.isThrough();
@@ -444,18 +446,7 @@ void GeEngine::doImmediate(u32 arg) {
     v.fog = u8(state_.F2_fog());
     const u32 type = (arg >> 8) & 7;
     if (type != GE_PRIM_KEEP_PREVIOUS || immVerts_.empty()) {
-        if (!immVerts_.empty()) {
-            // A new primitive starts: emit the collected one.
-            ImmPacket pkt;
-            pkt.state = &state_;
-            pkt.dirty = takeDirty();
-            pkt.prim = immPrim_;
-            pkt.flags = immFlags_;
-            pkt.vertices.swap(immVerts_);
-            ++stats_.immediates;
-            renderer_->drawImmediate(pkt);
-            immVerts_.clear();
-        }
+        if (!immVerts_.empty()) flushImmediate();  // a new primitive starts: emit the collected one
         if (type != GE_PRIM_KEEP_PREVIOUS) immPrim_ = GePrimType(type);
         immFlags_ = arg & 0xFFF800;  // flag bits 11..23 of the primitive's first vertex
     }

@@ -119,6 +119,7 @@ private:
     void doTransfer(u32 arg);
     void doClutLoad(u32 arg);
     void doImmediate(u32 arg);
+    void flushImmediate();
     void doEnd(u32 arg);
     bool jumpTo(u32 target);
     void matrixData(u8 op, u32 arg);

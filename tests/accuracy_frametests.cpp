@@ -2,6 +2,8 @@
 // top-left 480x272, RGB). The floors below are what the landed code reaches; they only go up.
 #include <gtest/gtest.h>
 
+#include "tests/test_util.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -19,15 +21,6 @@ struct Floors {
     double maxMedian; // median MSE at most this
 };
 
-std::vector<std::string> frametestDumps() {
-    std::vector<std::string> out;
-    fs::path dir = fs::path(GE2GL_FRAMETESTS_DIR) / "dumps";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return out;
-    for (auto& e : fs::directory_iterator(dir)) out.push_back(e.path().string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
 
 void runAccuracy(const std::string& backend, const Floors& floors) {
     auto files = frametestDumps();

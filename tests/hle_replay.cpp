@@ -2,6 +2,8 @@
 // corrupted dumps (random words, record types, sizes and pointers): never a crash or a hang.
 #include <gtest/gtest.h>
 
+#include "tests/test_util.h"
+
 #include <filesystem>
 #include <random>
 
@@ -13,15 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> frametestDumps() {
-    std::vector<std::string> out;
-    fs::path dir = fs::path(GE2GL_FRAMETESTS_DIR) / "dumps";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return out;
-    for (auto& e : fs::directory_iterator(dir)) out.push_back(e.path().string());
-    std::sort(out.begin(), out.end());
-    return out;
-}
 
 struct CountingRenderer : NullRenderer {
     u64 flushes = 0;
