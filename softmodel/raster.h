@@ -2,13 +2,15 @@
 // coordinates → Fragments (manual §3.6, §4, §8; ge-reference.md §8.1, §8.2, §8.6, §8.11, §6.6).
 //
 // Positions are fixed point with 4 fraction bits (1/16 pixel, §8.1); pixel centres are at +0.5
-// (§3.6), i.e. at 16·x + 8. Coverage is decided with exact 64-bit integer edge functions:
-//   - triangles: top-left fill rule — pixels whose centre is exactly on a right edge or on a
+// (§3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7, as the reference renderer
+// (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
+//   - triangles: top-left fill rule — pixels whose sample point is exactly on a right edge or on a
 //     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1);
 //   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1);
 //   - lines: a DDA stepping max(|dx|, |dy|) pixels, leaving out the end pixel (§8.11);
 //   - points: the one pixel containing the vertex (§4.1).
-// Attributes (§8.1): colours and Z interpolated linearly in screen space and truncated; fog in
+// Attributes (§8.1): Z interpolated linearly in screen space and truncated, triangle colours in
+// single precision and rounded to nearest (the reference renderer's arithmetic); fog in
 // screen space; texture coordinates perspective-correct (linear for rectangles and through mode,
 // where W = 1). The level of detail for TLEVEL mode 0 is derived per 2×2 pixel quad from the
 // change of s across X and of t down Y (§6.6).
@@ -109,5 +111,24 @@ u8 fogToByte(float f);
 // log2 as the software GE approximates it: exponent plus the mantissa as a linear fraction
 // (8 fraction bits), sign ignored; 0 gives −127. Exact for powers of two.
 float texLog2(float v);
+
+// ---- Interpolation setup shared with the GL translator (translator/tri_setup.h) ----
+// The GL backend evaluates triangle attributes per pixel from the very numbers this rasteriser
+// uses, so changes to this arithmetic reach both backends.
+// Plane of a screen-linear attribute (Z, Gouraud colour): value << 14 at drawing (0, 0) and
+// per-1/16-pixel gradients << 14; the attribute at a pixel centre (cx, cy) (1/16 units) is
+// at(cx, cy) (floored).
+struct AttrPlane {
+    s64 base = 0, kx = 0, ky = 0;
+    s64 at(s64 x, s64 y) const { return (base + kx * x + ky * y) >> 14; }
+};
+// The plane rasterTriangle uses for an attribute with values V at vertices (X, Y) (1/16 pixel).
+AttrPlane attributePlane(const s64 X[3], const s64 Y[3], const s64 V[3]);
+// 1/w as rasterTriangle weights perspective-correct texture coordinates with (w near 0 kept away
+// from a division by zero).
+double perspectiveRecip(float w);
+// Level of detail from the per-pixel steps of s across X and of t down Y (§6.6 mode 0), as
+// rasterTriangle / rasterRectangle form Fragment::lod.
+float lodFromTexSteps(const RasterParams& rp, double ds, double dt);
 
 }  // namespace ge::soft

@@ -7,18 +7,49 @@
 
 namespace ge::soft {
 
+namespace {
+
+// One term of a matrix row as the GE forms it. The GE has no IEEE specials (ge-reference §1.2): a
+// zero or denormal factor gives a zero term whatever the other factor is, and an exponent field of
+// 255 (IEEE inf/NaN) is an ordinary exponent, ±1.m·2^128. So a NaN coordinate times a zero matrix
+// element contributes nothing: Beam 'em up draws its text as transform-mode rectangles whose second
+// vertex has z = NaN under an orthographic matrix, and the reference (SWR, which multiplies with the
+// GE's term rules) draws them.
+inline float geTerm(float a, float b) {
+    u32 ba, bb;
+    std::memcpy(&ba, &a, 4);
+    std::memcpy(&bb, &b, 4);
+    const u32 ea = (ba >> 23) & 0xFF, eb = (bb >> 23) & 0xFF;
+    if (ea == 0 || eb == 0) return 0.0f;
+    if (ea != 255 && eb != 255) return a * b;
+    auto value = [](u32 bits, u32 e) {
+        if (e != 255) {
+            float f;
+            std::memcpy(&f, &bits, 4);
+            return double(f);
+        }
+        const double m = 1.0 + double(bits & 0x7FFFFF) / 8388608.0;
+        return (bits & 0x80000000u) ? -std::ldexp(m, 128) : std::ldexp(m, 128);
+    };
+    return float(value(ba, ea) * value(bb, eb));  // overflows to ±inf only for |other| ≥ ~1
+}
+
+}  // namespace
+
 void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
     // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; §3.4)
-    for (int r = 0; r < 3; ++r) out[r] = m[r] * p[0] + m[3 + r] * p[1] + m[6 + r] * p[2] + m[9 + r];
+    for (int r = 0; r < 3; ++r)
+        out[r] = geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1]) + geTerm(m[6 + r], p[2]) + m[9 + r];
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
-    for (int r = 0; r < 3; ++r) out[r] = m[r] * d[0] + m[3 + r] * d[1] + m[6 + r] * d[2];
+    for (int r = 0; r < 3; ++r) out[r] = geTerm(m[r], d[0]) + geTerm(m[3 + r], d[1]) + geTerm(m[6 + r], d[2]);
 }
 
 void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
     // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
-    for (int r = 0; r < 4; ++r) out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+    for (int r = 0; r < 4; ++r)
+        out[r] = geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1]) + geTerm(m[8 + r], p[2]) + m[12 + r];
 }
 
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal) {

@@ -110,25 +110,35 @@ TEST(SoftRaster, JitteredMeshNoGapsNoOverlap) {
 }
 
 TEST(SoftRaster, TopLeftRuleOnPixelCentres) {
-    // Right triangle with edges through pixel centres: top edge y = 0.5 and left edge x = 0.5 are
-    // drawn; the hypotenuse x + y = 5 (a right edge) is not: pixels with x + y ≤ 3.
+    // Triangles sample pixel p at p + 7/16 (raster.cpp kTriSample, the reference renderer's point).
+    // Right triangle with edges through sample points: top edge y = 7/16 and left edge x = 7/16
+    // are drawn; the hypotenuse (a right edge) is not: pixels with x + y ≤ 3.
     {
         Collector c;
-        rasterTriangle(fullScreen(), px(0.5f, 0.5f), px(4.5f, 0.5f), px(0.5f, 4.5f), px(0.5f, 4.5f), Band{}, c.sink);
+        rasterTriangle(fullScreen(), px(0.4375f, 0.4375f), px(4.4375f, 0.4375f), px(0.4375f, 4.4375f),
+                       px(0.4375f, 4.4375f), Band{}, c.sink);
         std::set<std::pair<int, int>> expect;
         for (int y = 0; y < 5; ++y)
             for (int x = 0; x + y <= 3; ++x) expect.insert({x, y});
         EXPECT_EQ(c.pixels(), expect);
     }
-    // Flat bottom edge y = 4.5 through centres: not drawn; the diagonal y = x bounds it on the
-    // right (not drawn), the left edge x = 0.5 is drawn: pixels 0 ≤ x < y ≤ 3.
+    // Flat bottom edge through sample points: not drawn; the diagonal y = x bounds it on the
+    // right (not drawn), the left edge is drawn: pixels 0 ≤ x < y ≤ 3.
     {
         Collector c;
-        rasterTriangle(fullScreen(), px(0.5f, 0.5f), px(4.5f, 4.5f), px(0.5f, 4.5f), px(0.5f, 4.5f), Band{}, c.sink);
+        rasterTriangle(fullScreen(), px(0.4375f, 0.4375f), px(4.4375f, 4.4375f), px(0.4375f, 4.4375f),
+                       px(0.4375f, 4.4375f), Band{}, c.sink);
         std::set<std::pair<int, int>> expect;
         for (int y = 0; y < 4; ++y)
             for (int x = 0; x < y; ++x) expect.insert({x, y});
         EXPECT_EQ(c.pixels(), expect);
+    }
+    // Half a pixel is not the sample point: a left edge at x = 0.5 leaves column 0 out.
+    {
+        Collector c;
+        rasterTriangle(fullScreen(), px(0.5f, 0), px(4.5f, 0), px(0.5f, 4), px(0.5f, 4), Band{}, c.sink);
+        for (auto [x, y] : c.pixels()) EXPECT_GE(x, 1);
+        EXPECT_FALSE(c.pixels().empty());
     }
     // Degenerate (zero area) draws nothing.
     {
@@ -138,14 +148,16 @@ TEST(SoftRaster, TopLeftRuleOnPixelCentres) {
     }
 }
 
-TEST(SoftRaster, GouraudColourAndZTruncated) {
-    // v0 (0,0), v1 (10,0), v2 (0,10) pixels; pixel (2,3) has its centre at (2.5, 3.5):
-    // barycentrics b1 = 0.25, b2 = 0.35, b0 = 0.4.
+TEST(SoftRaster, GouraudColourRoundedAndZTruncated) {
+    // v0 (0,0), v1 (10,0), v2 (0,10) pixels; pixel (2,3) is sampled at (2 + 7/16, 3 + 7/16):
+    // barycentrics b1 = 0.24375, b2 = 0.34375, b0 = 0.4125. Colours round to nearest (the
+    // reference renderer's float interpolation), Z is floored.
     ScreenVertex v0 = px(0, 0), v1 = px(10, 0), v2 = px(0, 10);
-    v0.color[0] = 0, v1.color[0] = 101, v2.color[0] = 203;  // 25.25 + 71.05 = 96.3 → 96
+    v0.color[0] = 0, v1.color[0] = 101, v2.color[0] = 203;  // 24.61875 + 69.78125 = 94.4 → 94
+    v0.color[1] = 0, v1.color[1] = 0, v2.color[1] = 2;      // 0.6875 → 1 (rounded, not floored)
     v0.color[3] = v1.color[3] = v2.color[3] = 255;
-    v0.z = 1000, v1.z = 2000, v2.z = 3001;                   // 400 + 500 + 1050.35 → 1950
-    v0.secondary[1] = 10, v1.secondary[1] = 20, v2.secondary[1] = 30;  // 4 + 5 + 10.5 → 19
+    v0.z = 1000, v1.z = 2000, v2.z = 3001;                   // 412.5 + 487.5 + 1031.59 → 1931
+    v0.secondary[1] = 10, v1.secondary[1] = 20, v2.secondary[1] = 31;  // 4.125 + 4.875 + 10.656 = 19.66 → 20
     RasterParams rp = fullScreen();
     Collector c;
     rasterTriangle(rp, v0, v1, v2, v2, Band{}, c.sink);
@@ -153,10 +165,11 @@ TEST(SoftRaster, GouraudColourAndZTruncated) {
     for (const Fragment& f : c.done()) {
         if (f.x == 2 && f.y == 3) {
             found = true;
-            EXPECT_EQ(f.color[0], 96);
+            EXPECT_EQ(f.color[0], 94);
+            EXPECT_EQ(f.color[1], 1);
             EXPECT_EQ(f.color[3], 255);
-            EXPECT_EQ(f.z, 1950);
-            EXPECT_EQ(f.secondary[1], 19);
+            EXPECT_EQ(f.z, 1931);
+            EXPECT_EQ(f.secondary[1], 20);
             EXPECT_EQ(f.fog, 255);  // fog off
         }
     }
@@ -168,19 +181,23 @@ TEST(SoftRaster, GouraudColourAndZTruncated) {
     rasterTriangle(rp, v0, v1, v2, v2, Band{}, flat.sink);
     for (const Fragment& f : flat.done()) {
         EXPECT_EQ(f.color[0], 203);
-        if (f.x == 2 && f.y == 3) EXPECT_EQ(f.z, 1950);
+        if (f.x == 2 && f.y == 3) {
+            EXPECT_EQ(f.z, 1931);
+        }
     }
 }
 
 TEST(SoftRaster, FogInterpolatedAndConverted) {
     ScreenVertex v0 = px(0, 0), v1 = px(10, 0), v2 = px(0, 10);
-    v0.fog = 1.0f, v1.fog = 0.0f, v2.fog = 0.5f;  // at (2.5, 3.5): 0.4 + 0 + 0.175 = 0.575
+    v0.fog = 1.0f, v1.fog = 0.0f, v2.fog = 0.5f;  // at (2.4375, 3.4375): 0.4125 + 0 + 0.171875 = 0.584375
     RasterParams rp = fullScreen();
     rp.fog = true;
     Collector c;
     rasterTriangle(rp, v0, v1, v2, v2, Band{}, c.sink);
     for (const Fragment& f : c.done())
-        if (f.x == 2 && f.y == 3) EXPECT_EQ(f.fog, 147);  // floor(0.575·256) = 147
+        if (f.x == 2 && f.y == 3) {
+            EXPECT_EQ(f.fog, 149);  // floor(0.584375·256) = 149
+        }
     EXPECT_EQ(fogToByte(-0.5f), 0);
     EXPECT_EQ(fogToByte(0.002f), 0);  // below 1/256
     EXPECT_EQ(fogToByte(0.5f), 128);
@@ -202,14 +219,14 @@ TEST(SoftRaster, PerspectiveCorrectTextureCoordinates) {
     int checked = 0;
     for (const Fragment& f : c.done()) {
         if (f.y != 0) continue;
-        // Pixel centre (x + 0.5, 0.5): barycentrics b1 = (x + .5)/16, b2 = .5/16.
-        const double b1 = (f.x + 0.5) / 16, b2 = 0.5 / 16, b0 = 1 - b1 - b2;
+        // Sample point (x + 7/16, 7/16): barycentrics b1 = (x + 7/16)/16, b2 = (7/16)/16.
+        const double b1 = (f.x + 0.4375) / 16, b2 = 0.4375 / 16, b0 = 1 - b1 - b2;
         const double s = (b1 / 3) / (b0 / 1 + b1 / 3 + b2 / 1);
         EXPECT_NEAR(f.s, s, 1e-6) << f.x;
         EXPECT_NEAR(f.t, 0.25, 1e-6);
         ++checked;
     }
-    EXPECT_EQ(checked, 15);  // the centre (15.5, 0.5) lies on the hypotenuse, a right edge
+    EXPECT_EQ(checked, 16);  // (15 + 7/16) + 7/16 < 16: pixel 15 is inside the hypotenuse
 
     // The level of detail (TLEVEL mode 0): a 1:1 linear mapping of a 256-texel texture over 256
     // pixels gives log2(1) = 0; over 64 pixels log2(4) = 2.

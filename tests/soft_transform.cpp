@@ -219,6 +219,40 @@ TEST(SoftTransform, ScreenRangeAndDepthFlags) {
     EXPECT_TRUE(r.run(at(5000, 10, 0.5f)).outside);
 }
 
+// The GE's matrix terms (transform.cpp geTerm): a zero or denormal factor gives a zero term, and
+// an exponent field of 255 (IEEE NaN/inf) is an ordinary exponent, ±1.m·2^128. Beam 'em up's text
+// (rectangles whose second vertex has z = NaN under an orthographic matrix) depends on it.
+TEST(SoftTransform, NanAndDenormalMatrixTerms) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();  // 0x7FC00000: +1.5·2^128 to the GE
+    float m[16] = {};
+    m[0] = 1, m[5] = 1, m[10] = -0.0078125f, m[15] = 1;  // z column only feeds row 2
+    const float p[3] = {3, 4, nan};
+    float out[4];
+    mulPoint4x4(m, p, out);
+    EXPECT_EQ(out[0], 3.0f);  // NaN·0 contributes nothing
+    EXPECT_EQ(out[1], 4.0f);
+    EXPECT_EQ(out[3], 1.0f);
+    EXPECT_EQ(out[2], std::ldexp(-1.5f, 121));  // 1.5·2^128 · −2^−7, finite
+    m[10] = 1;
+    mulPoint4x4(m, p, out);
+    EXPECT_TRUE(std::isinf(out[2]) && out[2] > 0);  // 1.5·2^128 overflows a float
+    // A denormal factor is zero even against a huge one.
+    const float m12[12] = {1e30f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    const float d[3] = {1e-40f, 0, 0};
+    float o3[3];
+    mulDir3x4(m12, d, o3);
+    EXPECT_EQ(o3[0], 0.0f);
+
+    // Through the whole vertex path with CLE = 1: X/Y stay valid, Z clamps (16384·inf + 32768).
+    Rig r;
+    r.set(GE_CMD_CLE, 1);
+    const ClipVertex v = r.run(at(10, 20, nan));
+    EXPECT_FALSE(v.outside);
+    EXPECT_EQ(v.sv.x, 160);
+    EXPECT_EQ(v.sv.y, 320);
+    EXPECT_EQ(v.sv.z, 65535);
+}
+
 TEST(SoftClip, DiscardRules) {
     Rig r;
     auto tri = [&](const ClipVertex& a, const ClipVertex& b, const ClipVertex& c) {
