@@ -64,7 +64,7 @@ public:
     bool ok = false;
 };
 
-TEST(ApiReplay, ScenesMatchTheCliRenderExactly) {
+void replayScenesThroughApi(int apiBackend, const std::string& cliBackend) {
     fs::path dir = fs::path(GE2GL_SOURCE_DIR) / "dumps";
     int scenes = 0;
     for (auto& e : fs::directory_iterator(dir)) {
@@ -76,11 +76,11 @@ TEST(ApiReplay, ScenesMatchTheCliRenderExactly) {
         ASSERT_TRUE(dump::loadDump(e.path().string(), d, err)) << err;
 
         tools::RenderOptions opt;
-        opt.backend = "soft";
+        opt.backend = cliBackend;
         tools::RenderOutput cli;
         ASSERT_TRUE(tools::renderDump(d, opt, cli, err)) << err;
 
-        ApiTarget api(GE2GL_BACKEND_SOFT);
+        ApiTarget api(apiBackend);
         ASSERT_TRUE(api.ok);
         dump::ReplayResult res;
         ASSERT_TRUE(dump::replayDump(d, api, {}, res, err)) << err;
@@ -102,6 +102,19 @@ TEST(ApiReplay, ScenesMatchTheCliRenderExactly) {
         EXPECT_GT(lit, 1000u);  // the comparison is not between two blank frames
     }
     EXPECT_GE(scenes, 5);
+}
+
+TEST(ApiReplay, ScenesMatchTheCliRenderExactly) { replayScenesThroughApi(GE2GL_BACKEND_SOFT, "soft"); }
+
+TEST(ApiReplay, ScenesMatchTheCliRenderExactlyWithGl) {
+    {
+        Memory probe(1u << 20);
+        std::string err;
+        tools::RenderOptions o;
+        o.backend = "gl";
+        if (!tools::createBackend(o, probe, err)) GTEST_SKIP() << "GL backend unavailable: " << err;
+    }
+    replayScenesThroughApi(GE2GL_BACKEND_GL_HEADLESS, "gl");
 }
 
 }  // namespace
