@@ -2,6 +2,7 @@
 #include "softmodel/raster.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstring>
 
@@ -117,6 +118,11 @@ void clipRows(const RasterParams& rp, int& y1, int& y2) {
 inline float lodFromSteps(const RasterParams& rp, double ds, double dt) {
     return texLog2(float(std::max(std::fabs(ds) * rp.texW0, std::fabs(dt) * rp.texH0)));
 }
+// The same from single-precision steps, as the reference forms it (CalculateSamplingParams):
+// max(|ds·w|, |dt·h|) in float.
+inline float lodFromStepsF(const RasterParams& rp, float ds, float dt) {
+    return texLog2(std::max(std::fabs(ds * rp.texW0), std::fabs(dt * rp.texH0)));
+}
 
 }  // namespace
 
@@ -143,6 +149,8 @@ AttrPlane attributePlane(const s64 X[3], const s64 Y[3], const s64 V[3]) {
 double perspectiveRecip(float w) { return recipW(w); }
 
 float lodFromTexSteps(const RasterParams& rp, double ds, double dt) { return lodFromSteps(rp, ds, dt); }
+
+int triangleSampleOffset() { return kTriSample; }
 
 bool Band::overlaps(int y1, int y2) const {
     if (y1 > y2) return false;
@@ -223,7 +231,18 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
         return A[i] * (16 * px + kTriSample) + B[i] * (16 * py + kTriSample) + C[i];
     };
 
-    const double areaD = double(area);
+    // Attribute order (the reference's): PPSSPP's software renderer submits every triangle as
+    // (a, b, c) and as (c, b, a) and draws the one with positive area (TransformUnit /
+    // BinManager::AddTriangle), so a triangle of negative area is interpolated in the order
+    // in2, in1, in0. Sums of float products depend on that order. o[] is that order; ow*(e)
+    // gives the edge-function weight of o[i] from the weights of v[] (v = in0, in2, in1 when
+    // swapped).
+    const ScreenVertex* o[3] = {&in0, &in1, &in2};
+    if (swapped) std::swap(o[0], o[2]);
+    auto orderWeights = [&](s64 e0, s64 e1, s64 e2, float& w0, float& w1, float& w2) {
+        if (!swapped) w0 = float(e0), w1 = float(e1), w2 = float(e2);
+        else w0 = float(e1), w1 = float(e2), w2 = float(e0);
+    };
 
     // Constant attributes are detected once so the common cases cost nothing per pixel.
     const bool zConst = v[0]->z == v[1]->z && v[1]->z == v[2]->z;
@@ -232,7 +251,9 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
                                           std::memcmp(v[1]->color, v[2]->color, 4) == 0);
     const bool secConst = !rp.gouraud || (std::memcmp(v[0]->secondary, v[1]->secondary, 3) == 0 &&
                                           std::memcmp(v[1]->secondary, v[2]->secondary, 3) == 0);
-    const bool fogConst = !rp.fog || (v[0]->fog == v[1]->fog && v[1]->fog == v[2]->fog);
+    // Fog is interpolated unless every vertex is unfogged (f ≥ 1): the reference does so even
+    // when the three factors are equal, and the float sum need not give the value back exactly.
+    const bool fogConst = !rp.fog || (v[0]->fog >= 1.0f && v[1]->fog >= 1.0f && v[2]->fog >= 1.0f);
     // Depth plane (original vertex order: the plane does not depend on it).
     const s64 PX[3] = {in0.x, in1.x, in2.x}, PY[3] = {in0.y, in1.y, in2.y};
     Plane zPlane;
@@ -242,26 +263,34 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
     }
     // The edge functions sum to the (positive) area everywhere: one reciprocal per triangle.
     const float wsumRecip = 1.0f / float(area);
-    const u8 fogValue = rp.fog ? fogToByte(v[0]->fog) : 255;
+    const u8 fogValue = 255;
 
-    // Perspective-correct texture coordinates: s = Σ E_i·s_i/w_i / Σ E_i·q_i/w_i (the common
-    // factor 1/area cancels). Through mode and immediate vertices have w = 1: plain linear.
-    double sw[3] = {}, tw[3] = {}, qw[3] = {}, rw[3] = {};
-    if (rp.textured || rp.needW) {
-        for (int i = 0; i < 3; ++i) {
-            rw[i] = recipW(v[i]->w);
-            sw[i] = v[i]->s * rw[i];
-            tw[i] = v[i]->t * rw[i];
-            qw[i] = v[i]->q * rw[i];
-        }
+    // Texture coordinates as the reference computes them, in single precision (PPSSPP
+    // Rasterizer.cpp GetTextureCoordinates[Proj]): q_i = 1/w_i, weights wq_i = E_i·q_i,
+    // s = (Σ wq_i·s_i)·(1 / Σ wq_i·Q_i) with the sums taken in attribute order (Q = 1 without
+    // texture projection, where the two forms agree). Through mode is screen-linear:
+    // s = (Σ E_i·s_i)·(1/area). Level 0 scaling (through mode) is by a power of two and commutes.
+    float os[3] = {}, ot[3] = {}, oq[3] = {}, orw[3] = {}, ocw[3] = {};
+    for (int i = 0; i < 3; ++i) {
+        os[i] = o[i]->s, ot[i] = o[i]->t, oq[i] = o[i]->q, ocw[i] = o[i]->w;
+        orw[i] = rp.through ? 1.0f : 1.0f / o[i]->w;
     }
-    auto texAt = [&](double e0, double e1, double e2, double& s, double& t) {
-        const double S = e0 * sw[0] + e1 * sw[1] + e2 * sw[2];
-        const double T = e0 * tw[0] + e1 * tw[1] + e2 * tw[2];
-        const double Q = e0 * qw[0] + e1 * qw[1] + e2 * qw[2];
-        s = S / Q;
-        t = T / Q;
+    auto texAt = [&](float w0, float w1, float w2, float& s, float& t) {
+        if (rp.through) {
+            s = interpolateF(os[0], os[1], os[2], w0, w1, w2, wsumRecip);
+            t = interpolateF(ot[0], ot[1], ot[2], w0, w1, w2, wsumRecip);
+            return;
+        }
+        const float a = w0 * orw[0], b = w1 * orw[1], c = w2 * orw[2];
+        const float qRecip = 1.0f / interpolateF(oq[0], oq[1], oq[2], a, b, c, 1.0f);
+        s = interpolateF(os[0], os[1], os[2], a, b, c, qRecip);
+        t = interpolateF(ot[0], ot[1], ot[2], a, b, c, qRecip);
     };
+    // 2×2 quads, as the reference walks them, start at the top-left pixel of the triangle's box
+    // (BinManager::Range: the vertices' pixel floor, scissor applied): the level of detail and the
+    // slope-mode W come from each quad's pixels.
+    const int quadX0 = std::max<int>(int(floorDiv(minX, 16)), rp.clipX1);
+    const int quadY0 = std::max<int>(int(floorDiv(minY, 16)), rp.clipY1);
 
     for (int y = py1; y <= py2; ++y) {
         if (!band.owns(y)) {
@@ -283,71 +312,69 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
         }
         if (empty || xl > xr) continue;
 
-        int quadX = -1;
-        float lod = 0.0f;
+        const int qy = quadY0 + ((y - quadY0) & ~1);
+        int quadX = INT_MIN;
+        float lod = 0.0f, quadW = 1.0f;
         for (s64 x = xl; x <= xr; ++x) {
             const s64 e0 = step[0] * x + K[0], e1 = step[1] * x + K[1], e2 = step[2] * x + K[2];
             Fragment& f = sink.next();
             f.x = int(x);
             f.y = y;
             const s64 cx = 16 * x + kTriSample;
+            float fw0, fw1, fw2;
+            orderWeights(e0, e1, e2, fw0, fw1, fw2);
             f.z = u16(zConst ? v[0]->z : std::clamp<s64>(zPlane.at(cx, cy), 0, 65535));
-            // Weights for the screen-linear attributes, in the original vertex order (the
-            // reference interpolates v0, v1, v2 as submitted); the swap above only reordered v[].
-            const float fw0 = float(e0), fw1 = float(swapped ? e2 : e1), fw2 = float(swapped ? e1 : e2);
             if (colConst) {
                 std::memcpy(f.color, cs.color, 4);
             } else {
                 for (int c = 0; c < 4; ++c)
-                    f.color[c] = interpolateColor(in0.color[c], in1.color[c], in2.color[c], fw0, fw1, fw2, wsumRecip);
+                    f.color[c] = interpolateColor(o[0]->color[c], o[1]->color[c], o[2]->color[c], fw0, fw1, fw2, wsumRecip);
             }
             if (secConst) {
                 std::memcpy(f.secondary, cs.secondary, 3);
             } else {
                 for (int c = 0; c < 3; ++c)
                     f.secondary[c] =
-                        interpolateColor(in0.secondary[c], in1.secondary[c], in2.secondary[c], fw0, fw1, fw2, wsumRecip);
+                        interpolateColor(o[0]->secondary[c], o[1]->secondary[c], o[2]->secondary[c], fw0, fw1, fw2, wsumRecip);
             }
             if (fogConst) {
                 f.fog = fogValue;
             } else {
-                const double fs = (v[0]->fog * double(e0) + v[1]->fog * double(e1) + v[2]->fog * double(e2)) / areaD;
-                f.fog = fogToByte(float(fs));
+                f.fog = fogToByte(interpolateF(o[0]->fog, o[1]->fog, o[2]->fog, fw0, fw1, fw2, wsumRecip));
+            }
+            if (rp.textured || rp.needW) {
+                const int qx = quadX0 + ((int(x) - quadX0) & ~1);
+                if ((rp.needLod || rp.needW) && qx != quadX) {
+                    quadX = qx;
+                    // The quad's top-left, top-right and bottom-left pixels (also outside the
+                    // triangle: the edge functions are planes).
+                    float a0, a1, a2;
+                    orderWeights(evalE(0, qx, qy), evalE(1, qx, qy), evalE(2, qx, qy), a0, a1, a2);
+                    if (rp.needLod) {
+                        float b0, b1, b2, c0, c1, c2, s00, t00, s10, t10, s01, t01;
+                        orderWeights(evalE(0, qx + 1, qy), evalE(1, qx + 1, qy), evalE(2, qx + 1, qy), b0, b1, b2);
+                        orderWeights(evalE(0, qx, qy + 1), evalE(1, qx, qy + 1), evalE(2, qx, qy + 1), c0, c1, c2);
+                        texAt(a0, a1, a2, s00, t00);
+                        texAt(b0, b1, b2, s10, t10);
+                        texAt(c0, c1, c2, s01, t01);
+                        lod = lodFromStepsF(rp, s10 - s00, t01 - t00);
+                    }
+                    // Slope mode: clip W screen-linear at the quad's top-left pixel (the
+                    // reference's "one value for the slope").
+                    if (rp.needW) quadW = interpolateF(ocw[0], ocw[1], ocw[2], a0, a1, a2, wsumRecip);
+                }
             }
             if (rp.textured) {
-                double s, t;
-                texAt(double(e0), double(e1), double(e2), s, t);
-                f.s = finiteOr0(float(s));
-                f.t = finiteOr0(float(t));
-                if (rp.needLod) {
-                    // One level of detail per 2×2 quad: s step across X and t step down Y,
-                    // measured at the quad's top-left pixel (§6.6).
-                    const int qx = int(x) & ~1;
-                    if (qx != quadX) {
-                        quadX = qx;
-                        const int qy = y & ~1;
-                        double s00, t00, s10, t10, s01, t01;
-                        texAt(double(evalE(0, qx, qy)), double(evalE(1, qx, qy)), double(evalE(2, qx, qy)), s00, t00);
-                        texAt(double(evalE(0, qx + 1, qy)), double(evalE(1, qx + 1, qy)),
-                              double(evalE(2, qx + 1, qy)), s10, t10);
-                        texAt(double(evalE(0, qx, qy + 1)), double(evalE(1, qx, qy + 1)),
-                              double(evalE(2, qx, qy + 1)), s01, t01);
-                        lod = lodFromSteps(rp, s10 - s00, t01 - t00);
-                    }
-                    f.lod = lod;
-                } else {
-                    f.lod = 0.0f;
-                }
+                float s, t;
+                texAt(fw0, fw1, fw2, s, t);
+                f.s = finiteOr0(s);
+                f.t = finiteOr0(t);
+                f.lod = rp.needLod ? lod : 0.0f;
             } else {
                 f.s = f.t = 0.0f;
                 f.lod = 0.0f;
             }
-            if (rp.needW) {
-                const double R = double(e0) * rw[0] + double(e1) * rw[1] + double(e2) * rw[2];
-                f.w = finiteOr0(float(areaD / R));
-            } else {
-                f.w = 1.0f;
-            }
+            f.w = rp.needW ? finiteOr0(quadW) : 1.0f;
         }
     }
 }

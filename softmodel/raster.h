@@ -46,6 +46,7 @@ struct RasterParams {
     bool needLod = false;    // TLEVEL mode 0: compute the per-quad level of detail
     bool needW = false;      // TLEVEL mode 2: per-pixel clip W
     bool fog = false;        // convert the interpolated fog factor (else fog = 255)
+    bool through = false;    // through mode: texture coordinates screen-linear (no 1/w weighting)
     float texW0 = 1, texH0 = 1;  // level-0 texture size (for the level of detail)
 };
 
@@ -130,5 +131,7 @@ double perspectiveRecip(float w);
 // Level of detail from the per-pixel steps of s across X and of t down Y (§6.6 mode 0), as
 // rasterTriangle / rasterRectangle form Fragment::lod.
 float lodFromTexSteps(const RasterParams& rp, double ds, double dt);
+// Where rasterTriangle samples pixel (x, y): (16·x + o, 16·y + o) in 1/16 pixel, o returned here.
+int triangleSampleOffset();
 
 }  // namespace ge::soft

@@ -123,6 +123,7 @@ RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
     rp.needLod = rp.textured && levelMode == 0;
     rp.needW = rp.textured && levelMode == 2;
     rp.fog = !through && st.FGE_on();
+    rp.through = through;
     rp.texW0 = float(st.textureWidth(0));
     rp.texH0 = float(st.textureHeight(0));
     return rp;
@@ -313,7 +314,9 @@ struct SoftRenderer::Impl {
     }
 
     // A triangle in primitive order; the third vertex is the provoking one (§8.1).
-    void triangle(u32 ia, u32 ib, u32 ic) {
+    // `ring`, when given, is the order the vertices are handed to the rasteriser in (see assemble);
+    // (ia, ib, ic) is the winding order used for culling and clipping.
+    void triangle(u32 ia, u32 ib, u32 ic, const u32* ring = nullptr) {
         const ClipVertex& a = cverts[ia];
         const ClipVertex& b = cverts[ib];
         const ClipVertex& c = cverts[ic];
@@ -353,7 +356,8 @@ struct SoftRenderer::Impl {
             ++stats.culled;
             return;
         }
-        addPrim(PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
+        if (ring) addPrim(PrimKind::Triangle, pushVertex(ring[0]), pushVertex(ring[1]), pushVertex(ring[2]), pushVertex(ic));
+        else addPrim(PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
     }
 
     void line(u32 ia, u32 ib) {
@@ -513,16 +517,28 @@ struct SoftRenderer::Impl {
                 }
             }
             // Every second triangle is wound the other way round; the newest vertex provokes.
+            // The reference renderer keeps strip vertices in a ring of three slots (vertex i in
+            // slot i mod 3) and rasterises the slots in order (TransformUnit::SubmitPrimitive),
+            // which decides the order of its float attribute sums (raster.cpp). (After quads drawn
+            // as rectangles, the newest upstream restarts the ring with the last two vertices in
+            // slots 2 and 0; the reference renders match counting from the strip start better.)
             for (size_t i = start + 2; i < n; ++i) {
-                if (!stripOdd) triangle(seq[i - 2], seq[i - 1], seq[i]);
-                else triangle(seq[i - 1], seq[i - 2], seq[i]);
+                u32 ring[3];
+                for (size_t k = i - 2; k <= i; ++k) ring[k % 3] = seq[k];
+                if (!stripOdd) triangle(seq[i - 2], seq[i - 1], seq[i], ring);
+                else triangle(seq[i - 1], seq[i - 2], seq[i], ring);
                 stripOdd = !stripOdd;
             }
             for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
             break;
         }
         case GE_PRIM_TRIANGLE_FAN:
-            for (size_t i = 2; i < n; ++i) triangle(seq[0], seq[i - 1], seq[i]);
+            // The reference's ring for fans: the centre in slot 0, odd-numbered vertices in slot 1,
+            // even-numbered ones in slot 2 (see the strip case).
+            for (size_t i = 2; i < n; ++i) {
+                const u32 ring[3] = {seq[0], (i & 1) ? seq[i] : seq[i - 1], (i & 1) ? seq[i - 1] : seq[i]};
+                triangle(seq[0], seq[i - 1], seq[i], ring);
+            }
             if (n >= 2) keep = {seq[0], seq[n - 1]};
             else if (n == 1) keep = {seq[0]};
             break;

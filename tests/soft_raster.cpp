@@ -244,6 +244,28 @@ TEST(SoftRaster, PerspectiveCorrectTextureCoordinates) {
     for (const Fragment& f : four.done()) ASSERT_NEAR(f.lod, 2.0f, 1e-3);
 }
 
+TEST(SoftRaster, SlopeModeWPerQuadScreenLinear) {
+    // TLEVEL mode 2 takes one W per 2×2 quad (quads start at the triangle box's top-left pixel):
+    // clip W interpolated linearly in screen space at the quad's top-left sample point, as the
+    // reference renderer does. v0 w = 1, v1 w = 3, v2 w = 1 over a 16-pixel right triangle:
+    // at sample (x + 7/16, 7/16) W = 1 + 2·(x + 7/16)/16.
+    ScreenVertex v0 = px(0, 0), v1 = px(16, 0), v2 = px(0, 16);
+    v0.w = 1, v1.w = 3, v2.w = 1;
+    RasterParams rp = fullScreen();
+    rp.textured = true;
+    rp.needW = true;
+    Collector c;
+    rasterTriangle(rp, v0, v1, v2, v2, Band{}, c.sink);
+    int checked = 0;
+    for (const Fragment& f : c.done()) {
+        if (f.y > 1 || f.x > 3) continue;
+        const double qx = f.x & ~1;  // quads (0,1) and (2,3), rows 0–1
+        EXPECT_NEAR(f.w, 1.0 + 2.0 * (qx + 0.4375) / 16.0, 1e-6) << f.x << "," << f.y;
+        ++checked;
+    }
+    EXPECT_EQ(checked, 8);
+}
+
 TEST(SoftRaster, TexLog2Approximation) {
     EXPECT_EQ(texLog2(1.0f), 0.0f);
     EXPECT_EQ(texLog2(8.0f), 3.0f);
