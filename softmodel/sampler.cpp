@@ -85,6 +85,15 @@ inline s64 texelFixed(float f) {
     return (f >= -2147483648.0f && f < 2147483648.0f) ? s64(s32(f)) : s64(INT32_MIN);
 }
 
+// The same position rounded to nearest (ties to even) for the bilinear path: upstream SWR's x86
+// sampler JIT converts s·w·256 with CVTPS2DQ (current rounding mode, nearest-even) for the
+// four-texel quad, but with CVTTPS2DQ (truncation) for nearest sampling (SamplerX86.cpp
+// Jit_GetTexelCoordsQuad vs Jit_GetTexelCoords). Out of range and NaN give INT_MIN as the
+// instruction's "integer indefinite" value.
+inline s64 texelFixedRound(float f) {
+    return (f >= -2147483648.0f && f < 2147483648.0f) ? s64(s32(std::nearbyint(f))) : s64(INT32_MIN);
+}
+
 template <bool CLAMP>
 inline int addressTexel(s64 u, int mask, int maxIndex) {
     if constexpr (CLAMP) return u < 0 ? 0 : (u > maxIndex ? maxIndex : int(u));
@@ -114,9 +123,10 @@ inline u32 nearestT(const TexLevel& lv, float s, float t) {
 template <bool CU, bool CV>
 inline u32 bilinearT(const TexLevel& lv, float s, float t) {
     if (!lv.texels) return 0;
-    // Half a texel back (128/256), then 8 integer bits and the top 4 of the fraction.
-    const s64 bu = texelFixed(s * lv.scaleU) - 128;
-    const s64 bv = texelFixed(t * lv.scaleV) - 128;
+    // Rounded position (texelFixedRound), half a texel back (128/256), then 8 integer bits and
+    // the top 4 of the fraction.
+    const s64 bu = texelFixedRound(s * lv.scaleU) - 128;
+    const s64 bv = texelFixedRound(t * lv.scaleV) - 128;
     const int fu = int((bu >> 4) & 15), fv = int((bv >> 4) & 15);
     const s64 u0 = bu >> 8, v0 = bv >> 8;
     const int ua = addressTexel<CU>(u0, lv.wrapMaskU, lv.clampMaxU);

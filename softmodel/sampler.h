@@ -60,8 +60,9 @@ int levelOfDetail16(const LodParams& p, float lod, float w);
 LevelChoice chooseLevel(const LodParams& p, int detail16);
 
 // Single-level filters (ref §8.10). Nearest: u = trunc(s·w·256) >> 8. Bilinear: the sample point
-// moves half a texel back, u0 = (trunc(s·w·256) − 128) >> 8 with the 4-bit fraction of the same
-// value; the four texels are wrapped/clamped separately and weighted (16 − fu)(16 − fv), … >> 8.
+// moves half a texel back, u0 = (round(s·w·256) − 128) >> 8 with the 4-bit fraction of the same
+// value (s·w·256 rounded to nearest-even, as the reference renderer's x86 sampler converts it);
+// the four texels are wrapped/clamped separately and weighted (16 − fu)(16 − fv), … >> 8.
 u32 sampleNearest(const TexLevel& lv, float s, float t, bool clampU, bool clampV);
 u32 sampleBilinear(const TexLevel& lv, float s, float t, bool clampU, bool clampV);
 // (c_next·frac + c·(16 − frac)) >> 4 per channel.

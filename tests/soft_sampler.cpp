@@ -81,6 +81,24 @@ TEST(SoftSampler, RepeatVersusClamp) {
     EXPECT_EQ(red(sampleBilinear(lv, -1e30f, 1e30f, true, true)), 10u);
 }
 
+TEST(SoftSampler, BilinearRoundsThePositionNearestSampleTruncates) {
+    // The reference renderer's x86 sampler converts s·w·256 to an integer with CVTPS2DQ (round to
+    // nearest, ties to even) for bilinear quads but CVTTPS2DQ (truncation) for nearest sampling.
+    // 16×1 texture, red 160 at texel 4, 0 elsewhere; t = 0.5 → v0 0, fv 0.
+    std::vector<u32> row(16, rgba(0, 0, 0, 255));
+    row[4] = rgba(160, 0, 0, 255);
+    const TexLevel lv = levelOf(row, 4, 0);
+    auto red = [](u32 c) { return c & 255; };
+    // s·4096 = 1023.6 → 1024 − 128 = 896: u0 3, fu 8 → 160·8·16 >> 8 = 80 (truncation: fu 7, 70).
+    EXPECT_EQ(red(sampleBilinear(lv, 1023.6f / 4096.0f, 0.5f, false, false)), 80u);
+    // 1039.5 is a tie: nearest-even 1040 → 912: fu 9 → 90 (truncation: fu 8, 80).
+    EXPECT_EQ(red(sampleBilinear(lv, 1039.5f / 4096.0f, 0.5f, false, false)), 90u);
+    // 1038.5 ties down to 1038 → 910: fu 8 → 80.
+    EXPECT_EQ(red(sampleBilinear(lv, 1038.5f / 4096.0f, 0.5f, false, false)), 80u);
+    // Nearest still truncates: s·4096 = 1279.9 → 1279 >> 8 = texel 4 (1280 would be texel 5).
+    EXPECT_EQ(red(sampleNearest(lv, 1279.9f / 4096.0f, 0.5f, false, false)), 160u);
+}
+
 TEST(SoftSampler, SizesAbove512SaturateAddressing) {
     // TSIZE 2^10: coordinates scale by 1024, addressing uses & 1023 & 511 (repeat) or ≤ 511.
     std::vector<u32> texels(512);
