@@ -38,6 +38,7 @@ std::string describe(const HostCaps& c) {
     if (c.depthFetch) add(s, "depthfetch");
     if (c.textureBarrier) add(s, "barrier");
     if (c.programBinary) add(s, "progbin");
+    if (c.exactInterp) add(s, "exactinterp");
     if (s.empty()) s = "baseline";
     return s;
 }

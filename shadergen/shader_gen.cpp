@@ -72,8 +72,14 @@ std::string logicExpr(int op) {
     }
 }
 
-void header(std::string& s, const HostCaps&, const FsKey* fk, const std::string& desc) {
-    s += "#version 330 core\n";
+void header(std::string& s, const HostCaps& caps, const FsKey* fk, const std::string& desc) {
+    if (caps.exactInterp) {
+        // GLSL 4.00: doubles, `precise`; int64 from ARB_gpu_shader_int64 (exact interpolation).
+        s += "#version 400 core\n";
+        if (fk) s += "#extension GL_ARB_gpu_shader_int64 : require\n";
+    } else {
+        s += "#version 330 core\n";
+    }
     if (fk && fk->dstRead == DstRead::FbFetch) s += "#extension GL_EXT_shader_framebuffer_fetch : require\n";
     if (fk && fk->depthRead == DepthRead::Fetch)
         s += "#extension GL_ARM_shader_framebuffer_fetch_depth_stencil : require\n";
@@ -82,12 +88,163 @@ void header(std::string& s, const HostCaps&, const FsKey* fk, const std::string&
     s += "\n";
 }
 
+// ---- exact interpolation (HostCaps::exactInterp, layout in shader_gen.h `tri`) ----
+std::string recTexel(int texel) { return "v_rec[" + std::to_string(texel) + "]"; }
+// Double / int64 number i of the record as a GLSL expression.
+std::string recD(int i) {
+    return "packDouble2x32(" + recTexel(tri::kDoubles + i / 2) + ((i & 1) ? ".zw)" : ".xy)");
+}
+std::string recI(int i) {
+    return "packInt2x32(ivec2(" + recTexel(tri::kInts + i / 2) + ((i & 1) ? ".zw))" : ".xy))");
+}
+// Depth plane at the sample point, clamped to 0–65535 (raster.cpp Plane::at + std::clamp).
+std::string zPlaneExpr() {
+    return "planeAt(" + recI(tri::kIZ) + ", " + recI(tri::kIZ + 1) + ", " + recI(tri::kIZ + 2) + ", 65535)";
+}
+
+// Helper functions of the exact path. Each mirrors softmodel/raster.cpp (rasterTriangle,
+// rasterRectangle): `precise` keeps every float/double operation separately rounded, in the
+// software model's order, with no fused multiply-adds. Divisions the software model does in
+// float are done in double and rounded once to float, which gives the correctly rounded float
+// quotient (double has more than 2·24 + 2 bits) whatever the driver's float division is.
+void emitExactHelpers(std::string& s, const FsKey& k) {
+    const std::string hdr = recTexel(tri::kHeader);
+    auto flag = [&](u32 f) { return "((" + hdr + ".x & " + std::to_string(f) + "u) != 0u)"; };
+    s += "flat in uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n";
+    s += "int64_t g_cx, g_cy;\n"
+         "vec3 g_w;\n"  // edge weights of the sample point in attribute order
+         "int planeAt(int64_t b, int64_t kx, int64_t ky, int hi) {\n"
+         "  int64_t v = (b + kx * g_cx + ky * g_cy) >> 14;\n"
+         "  return v < int64_t(0) ? 0 : (v > int64_t(hi) ? hi : int(v));\n"
+         "}\n";
+    // Edge function i at drawing position (cx, cy) (1/16 units): rasterTriangle's e_i.
+    s += "int64_t edgeAt(int i, int64_t cx, int64_t cy) {\n"
+         "  if (i == 0) return " + recI(tri::kIA) + " * cx + " + recI(tri::kIB) + " * cy + " + recI(tri::kIC) + ";\n"
+         "  if (i == 1) return " + recI(tri::kIA + 1) + " * cx + " + recI(tri::kIB + 1) + " * cy + " + recI(tri::kIC + 1) + ";\n"
+         "  return " + recI(tri::kIA + 2) + " * cx + " + recI(tri::kIB + 2) + " * cy + " + recI(tri::kIC + 2) + ";\n"
+         "}\n"
+         "int sampleOffset() { return int(" + recTexel(tri::kColors) + ".w); }\n"
+         // rasterTriangle's coverage test at the sample point (GL's own coverage is a superset).
+         "bool edgeTestFails(int64_t cx, int64_t cy) {\n"
+         "  uint h = " + hdr + ".x;\n"
+         "  if ((h & 15u) != " + std::to_string(tri::kKindTriangle) + "u) return false;\n"
+         "  for (int i = 0; i < 3; ++i)\n"
+         "    if (edgeAt(i, cx, cy) < int64_t((h >> (" + std::to_string(tri::kEdgeThresholdShift) + " + i)) & 1u)) return true;\n"
+         "  return false;\n"
+         "}\n"
+         // orderWeights: float(e) per vertex in attribute order (e1, e2, e0 when swapped).
+         "vec3 weightsAt(int x, int y) {\n"
+         "  int o = sampleOffset();\n"
+         "  int64_t cx = int64_t(16 * x + o), cy = int64_t(16 * y + o);\n"
+         "  vec3 e = vec3(float(edgeAt(0, cx, cy)), float(edgeAt(1, cx, cy)), float(edgeAt(2, cx, cy)));\n"
+         "  return " + flag(tri::kFlagSwapped) + " ? e.yzx : e;\n"
+         "}\n"
+         "float wsumRecip() { return uintBitsToFloat(" + recTexel(tri::kFog) + ".w); }\n"
+         // interpolateF: ((a·w0 + b·w1) + c·w2)·recip in single precision.
+         "float interpF(vec3 v, vec3 w, float recip) {\n"
+         "  precise float acc = v.x * w.x;\n"
+         "  acc = acc + v.y * w.y;\n"
+         "  acc = acc + v.z * w.z;\n"
+         "  precise float r = acc * recip;\n"
+         "  return r;\n"
+         "}\n"
+         "vec3 recF(uvec4 t) { return uintBitsToFloat(t.xyz); }\n";
+    // interpolateColor: rounded to nearest even, kept to 0–255.
+    s += "ivec4 bytes4(uint p) { return ivec4(uvec4(p, p >> 8, p >> 16, p >> 24) & 255u); }\n"
+         "ivec4 interpColor(uvec3 pc, bool varies) {\n"
+         "  if (!varies) return bytes4(pc.x);\n"
+         "  vec4 c0 = vec4(bytes4(pc.x)), c1 = vec4(bytes4(pc.y)), c2 = vec4(bytes4(pc.z));\n"
+         "  float r = wsumRecip();\n"
+         "  vec4 v = vec4(interpF(vec3(c0.x, c1.x, c2.x), g_w, r), interpF(vec3(c0.y, c1.y, c2.y), g_w, r),\n"
+         "                interpF(vec3(c0.z, c1.z, c2.z), g_w, r), interpF(vec3(c0.w, c1.w, c2.w), g_w, r));\n"
+         "  return ivec4(clamp(roundEven(v), 0.0, 255.0));\n"
+         "}\n";
+    if (k.tex) {
+        s += "float finiteOr0(float v) { return (isnan(v) || isinf(v)) ? 0.0 : v; }\n";
+        // texAt: through mode screen-linear; else weights w_i/w_i-clip, s = Σ·(1/Σ q).
+        s += "vec2 texAt(vec3 w) {\n"
+             "  vec3 S = recF(" + recTexel(tri::kS) + "), T = recF(" + recTexel(tri::kT) + ");\n"
+             "  if (" + flag(tri::kFlagThrough) + ") return vec2(interpF(S, w, wsumRecip()), interpF(T, w, wsumRecip()));\n"
+             "  precise vec3 a = w * recF(" + recTexel(tri::kRecipW) + ");\n"
+             "  float qs = interpF(recF(" + recTexel(tri::kQ) + "), a, 1.0);\n"
+             "  float qRecip = float(1.0lf / double(qs));\n"
+             "  return vec2(interpF(S, a, qRecip), interpF(T, a, qRecip));\n"
+             "}\n";
+        s += "vec2 g_st;\n"
+             "float g_lod, g_wclip;\n"
+             "void exactTexInputs(ivec2 pix) {\n"
+             "  uvec4 h = " + hdr + ";\n"
+             "  g_lod = uintBitsToFloat(h.z);\n"
+             "  g_wclip = uintBitsToFloat(h.w);\n"
+             "  if ((h.x & 15u) == " + std::to_string(tri::kKindTriangle) + "u) {\n"
+             "    vec2 st = texAt(g_w);\n"
+             "    g_st = vec2(finiteOr0(st.x), finiteOr0(st.y));\n";
+        if (k.texLodMode == 0 || k.texLodMode == 2) {
+            // 2×2 quads anchored at the triangle box's top-left pixel (scissored).
+            s += "    uint qo = " + recTexel(tri::kSecondary) + ".w;\n"
+                 "    ivec2 q0 = ivec2(int(qo & 0xFFFFu), int(qo >> 16));\n"
+                 "    ivec2 q = q0 + ((pix - q0) & ivec2(~1));\n"
+                 "    vec3 a = weightsAt(q.x, q.y);\n";
+        }
+        if (k.texLodMode == 0) {
+            // lodFromStepsF: texLog2(max(|Δs·w0|, |Δt·h0|)) in float.
+            s += "    vec2 p00 = texAt(a), p10 = texAt(weightsAt(q.x + 1, q.y)), p01 = texAt(weightsAt(q.x, q.y + 1));\n"
+                 "    precise float ds = p10.x - p00.x;\n"
+                 "    precise float dt = p01.y - p00.y;\n"
+                 "    precise float ma = abs(ds * uintBitsToFloat(" + recTexel(tri::kS) + ".w));\n"
+                 "    precise float mb = abs(dt * uintBitsToFloat(" + recTexel(tri::kT) + ".w));\n"
+                 "    uint bits = floatBitsToUint(ma < mb ? mb : ma);\n"
+                 "    g_lod = float(int((bits >> 15) & 0xFFFFu) - 127 * 256) / 256.0;\n";
+        }
+        if (k.texLodMode == 2) {
+            // Slope mode: clip W screen-linear at the quad's top-left pixel.
+            s += "    g_wclip = finiteOr0(interpF(recF(" + recTexel(tri::kClipW) + "), a, wsumRecip()));\n";
+        }
+        s += "  } else {\n"
+             // Rectangles and fragments: s = sBase + fx·sDx + fy·sDy in double (rasterRectangle).
+             "    precise double fx = double(16 * pix.x + 8 - int(" + recD(tri::kDX0) + ")) * " + recD(tri::kDInvW) + ";\n"
+             "    precise double fy = double(16 * pix.y + 8 - int(" + recD(tri::kDY0) + ")) * " + recD(tri::kDInvH) + ";\n"
+             "    precise double s = " + recD(tri::kDSBase) + " + fx * " + recD(tri::kDSDx) + " + fy * " + recD(tri::kDSDy) + ";\n"
+             "    precise double t = " + recD(tri::kDTBase) + " + fx * " + recD(tri::kDTDx) + " + fy * " + recD(tri::kDTDy) + ";\n"
+             "    g_st = vec2(finiteOr0(float(s)), finiteOr0(float(t)));\n"
+             "  }\n"
+             "}\n";
+    }
+    if (k.fog) {
+        // fogToByte (raster.cpp, §8.9) of the interpolated factor, or the record's byte.
+        s += "int fogFactor() {\n"
+             "  if (!" + flag(tri::kFlagFogVaries) + ") return int(" + hdr + ".y);\n"
+             "  float f = interpF(recF(" + recTexel(tri::kFog) + "), g_w, wsumRecip());\n"
+             "  uint b = floatBitsToUint(f);\n"
+             "  if ((b & 0x80000000u) != 0u) return 0;\n"
+             "  if (b >= 0x3F800000u) return 255;\n"
+             "  precise float f256 = f * 256.0;\n"
+             "  return int(f256);\n"
+             "}\n";
+    }
+}
+
 }  // namespace
 
 bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
     (void)err;
     std::string s;
     header(s, caps, nullptr, describe(key));
+    if (caps.exactInterp) {
+        // The triangle's record (gl_VertexID / 3: three vertices per triangle, glDrawArrays
+        // `first` included) goes to the fragment shader as flat varyings.
+        s += "layout(location = 0) in vec3 a_pos;\n"
+             "uniform vec2 u_ndcScale;\n"
+             "uniform usamplerBuffer u_tris;\n"
+             "flat out uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n"
+             "void main() {\n"
+             "  int base = (gl_VertexID / 3) * " + std::to_string(tri::kTexels) + ";\n"
+             "  for (int i = 0; i < " + std::to_string(tri::kTexels) + "; ++i) v_rec[i] = texelFetch(u_tris, base + i);\n"
+             "  gl_Position = vec4(a_pos.x * u_ndcScale.x - 1.0, a_pos.y * u_ndcScale.y - 1.0, 0.0, 1.0);\n"
+             "}\n";
+        out = std::move(s);
+        return true;
+    }
     // Everything arrives in drawing coordinates from the CPU transform; GL only rasterises.
     // Colours, Z and fog are linear in screen space (ref §8.1): noperspective. Texture
     // coordinates arrive pre-multiplied by 1/w and are divided per pixel in the fragment shader.
@@ -134,12 +291,17 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     const bool depthInShader = k.depthRead != DepthRead::None;
     std::string s;
     header(s, caps, &k, describe(k));
-    const char* colorInterp = k.flatShade ? "flat" : "noperspective";
-    s += std::string(colorInterp) + " in vec4 v_color;\n";
-    s += std::string(colorInterp) + " in vec3 v_color2;\n";
-    s += "noperspective in vec4 v_tex;\n"
-         "noperspective in float v_fog;\n"
-         "noperspective in float v_z;\n";
+    const bool exact = caps.exactInterp;
+    if (exact) {
+        emitExactHelpers(s, k);
+    } else {
+        const char* colorInterp = k.flatShade ? "flat" : "noperspective";
+        s += std::string(colorInterp) + " in vec4 v_color;\n";
+        s += std::string(colorInterp) + " in vec3 v_color2;\n";
+        s += "noperspective in vec4 v_tex;\n"
+             "noperspective in float v_fog;\n"
+             "noperspective in float v_z;\n";
+    }
     if (k.dstRead == DstRead::FbFetch)
         s += "layout(location = 0) inout uvec4 o_color;\n";
     else
@@ -167,28 +329,39 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "}\n";
         // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
         // the sample point half a texel and keeps a 4-bit fraction (ref §8.10).
-        s += "ivec2 fixCoord(int lv, vec2 st) {\n"
-             "  vec2 p = st * vec2(u_texLevels[lv].yz) * 256.0;\n"
-             "  p = clamp(floor(p), vec2(-1073741824.0), vec2(1073741824.0));\n"
-             "  return ivec2(p);\n"
+        // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
+        s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n"
+             "ivec2 fixCoord(int lv, vec2 st) {\n"
+             "  vec2 p = st * (vec2(u_texLevels[lv].yz) * 256.0);\n"
+             "  return ivec2(fixc(p.x), fixc(p.y));\n"
              "}\n"
              "ivec4 sampleNearest(int lv, vec2 st) {\n"
              "  ivec2 p = fixCoord(lv, st) >> 8;\n"
              "  return texel(lv, p.x, p.y);\n"
              "}\n"
+             // p − 128 split so it cannot overflow: integer part and 4-bit fraction.
              "ivec4 sampleLinear(int lv, vec2 st) {\n"
-             "  ivec2 p = fixCoord(lv, st) - ivec2(128);\n"
-             "  ivec2 i0 = p >> 8;\n"
-             "  ivec2 f = (p >> 4) & 15;\n"
+             "  ivec2 q = fixCoord(lv, st);\n"
+             "  ivec2 lo = q & 255;\n"
+             "  ivec2 i0 = (q >> 8) - ivec2(lessThan(lo, ivec2(128)));\n"
+             "  ivec2 f = ((lo - 128) & 255) >> 4;\n"
              "  ivec4 c00 = texel(lv, i0.x, i0.y), c10 = texel(lv, i0.x + 1, i0.y);\n"
              "  ivec4 c01 = texel(lv, i0.x, i0.y + 1), c11 = texel(lv, i0.x + 1, i0.y + 1);\n"
              "  return (c00 * ((16 - f.x) * (16 - f.y)) + c10 * (f.x * (16 - f.y)) +\n"
              "          c01 * ((16 - f.x) * f.y) + c11 * (f.x * f.y)) >> 8;\n"
              "}\n";
-        s += "ivec4 sampleTexture() {\n"
-             "  vec2 st = v_tex.xy / v_tex.z;\n";
+        s += "ivec4 sampleTexture() {\n";
+        s += exact ? "  vec2 st = g_st;\n" : "  vec2 st = v_tex.xy / v_tex.z;\n";
         // Level of detail in 1/16 steps (ref §6.6).
-        if (k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
+        if (exact && k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
+            // sampler.cpp levelOfDetail16, mode 0.
+            s += "  float x16 = g_lod * 16.0;\n"
+                 "  int lod = x16 >= 4096.0 ? 4096 : (x16 > -4096.0 ? int(floor(x16)) : -4096);\n";
+        } else if (exact && k.texLodMode == 2) {
+            // sampler.cpp levelOfDetail16, mode 2: texLog2x16(2·W·TSLOPE).
+            s += "  precise float m = 2.0 * g_wclip * u_texSlope;\n"
+                 "  int lod = clamp(int((floatBitsToUint(m) >> 19) & 0xFFFu) - 127 * 16, -4096, 4096);\n";
+        } else if (k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
             s += "  vec2 size0 = vec2(u_texLevels[0].yz);\n"
                  "  float m = max(abs(dFdx(st.x)) * size0.x, abs(dFdy(st.y)) * size0.y);\n"
                  "  int lod = m > 0.0 ? int(floor(clamp(log2(m), -64.0, 64.0) * 16.0)) : -1024;\n";
@@ -231,7 +404,9 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         s += "  return c;\n"
              "}\n";
     }
-    if (k.fog)
+    if (k.fog && exact)
+        s += "uniform ivec3 u_fogColor;\n";  // fogFactor() in the exact helpers
+    else if (k.fog)
         s += "uniform ivec3 u_fogColor;\n"
              // f becomes 8-bit: 0 at or below 0, 255 at or above 1, else floor(f·256) (ref §8.9).
              "int fogFactor() {\n"
@@ -285,23 +460,41 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
 
     // ---- main ----
     s += "void main() {\n"
-         "  ivec2 pix = ivec2(gl_FragCoord.xy);\n"
-         // Z is linear in screen space and truncated; the epsilon keeps exact vertex values exact
-         // against float interpolation noise.
-         "  int z = int(clamp(v_z + (1.0 / 1024.0), 0.0, 65535.0));\n"
-         "  float zOut = float(z) * (1.0 / 65536.0);\n";
+         "  ivec2 pix = ivec2(gl_FragCoord.xy);\n";
+    if (exact) {
+        // Sample point in 1/16 units; edge values as rasterTriangle (only triangles use them).
+        s += "  g_cx = int64_t(16 * pix.x + sampleOffset());\n"
+             "  g_cy = int64_t(16 * pix.y + sampleOffset());\n"
+             "  if (edgeTestFails(g_cx, g_cy)) discard;\n"
+             "  g_w = weightsAt(pix.x, pix.y);\n"
+             "  int z = " + zPlaneExpr() + ";\n";
+        if (k.tex) s += "  exactTexInputs(pix);\n";
+    } else {
+        // Z is linear in screen space and truncated; the epsilon keeps exact vertex values exact
+        // against float interpolation noise.
+        s += "  int z = int(clamp(v_z + (1.0 / 1024.0), 0.0, 65535.0));\n";
+    }
+    s += "  float zOut = float(z) * (1.0 / 65536.0);\n";
     if (k.tex) s += "  ivec4 t = sampleTexture();\n";  // before any discard: derivatives
     if (k.depthRange)
         s += "  if (z < u_zRange.x || z > u_zRange.y) discard;\n";  // ref §8.4 step 2
     if (k.dstRead == DstRead::FbFetch) s += "  ivec4 dst = ivec4(o_color);\n";
     if (k.dstRead == DstRead::Texture) s += "  ivec4 dst = ivec4(texelFetch(u_dstColor, pix, 0));\n";
     if (dst && k.fbFormat == 0) s += "  dst.a = 0;\n";  // 5650 reads Ad = 0 (ref §8.8)
-    s += "  ivec4 prim = ivec4(v_color + vec4(1.0 / 1024.0));\n";
+    if (exact)
+        s += "  ivec4 prim = interpColor(" + recTexel(tri::kColors) + ".xyz, (" + recTexel(tri::kHeader) + ".x & " +
+             std::to_string(tri::kFlagColorVaries) + "u) != 0u);\n";
+    else
+        s += "  ivec4 prim = ivec4(v_color + vec4(1.0 / 1024.0));\n";
     s += "  ivec4 c;\n";
     if (k.clearMode) {
         s += "  c = prim;\n";
     } else {
-        s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";
+        if (exact)
+            s += "  ivec3 sec = interpColor(" + recTexel(tri::kSecondary) + ".xyz, (" + recTexel(tri::kHeader) +
+                 ".x & " + std::to_string(tri::kFlagSecVaries) + "u) != 0u).rgb;\n";
+        else
+            s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";
         if (k.tex) {
             // Texture function, exact forms of ref §8.3.
             const bool d = k.texDouble;

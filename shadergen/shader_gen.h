@@ -16,6 +16,7 @@
 #pragma once
 #include <string>
 
+#include "hle/types.h"
 #include "shadergen/shader_keys.h"
 
 namespace ge::shadergen {
@@ -43,7 +44,49 @@ inline constexpr const char* kTexSlope = "u_texSlope";      // float
 }  // namespace uniform
 
 inline constexpr int kAttrPos = 0, kAttrColor = 1, kAttrColor2 = 2, kAttrTex = 3, kAttrFog = 4;
-inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2;
+inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2, kUnitTris = 3;
+inline constexpr const char* kTrisUniform = "u_tris";  // usamplerBuffer of triangle records
+
+// Exact interpolation (HostCaps::exactInterp): every GL triangle has a record of kTexels RGBA32UI
+// texels in the buffer texture u_tris, at index gl_VertexID / 3 (translator/tri_setup.h fills
+// it from the software rasteriser's per-triangle setup, softmodel/raster.h). Only a_pos is read
+// from the vertex then; the vertex shader passes the record on as flat varyings and the fragment
+// shader evaluates Z, colours, fog, s, t, level of detail and W at the sample point with the
+// software rasteriser's arithmetic (softmodel/raster.cpp rasterTriangle: int64 depth plane,
+// single-precision attribute sums over float edge weights in the reference's vertex order).
+namespace tri {
+inline constexpr int kTexels = 15;
+// Triangles ("o" = attribute order: in0, in1, in2, or in2, in1, in0 for negative area).
+inline constexpr int kHeader = 0;     // x: kind | flags, y: fog byte, z: lod (float bits), w: W (float bits)
+inline constexpr int kFog = 1;        // xyz: fog factor of o[i] (float bits); w: 1/area (float)
+inline constexpr int kColors = 2;     // xyz: primary RGBA of o[i] (R in bits 0–7); w: sample offset
+inline constexpr int kSecondary = 3;  // xyz: secondary RGB of o[i]; w: quad origin x | y << 16
+inline constexpr int kS = 4;          // xyz: s of o[i]; w: level-0 width (float)
+inline constexpr int kT = 5;          // xyz: t of o[i]; w: level-0 height (float)
+inline constexpr int kQ = 6;          // xyz: q of o[i]
+inline constexpr int kRecipW = 7;     // xyz: 1/w of o[i] (1 in through mode)
+inline constexpr int kClipW = 8;      // xyz: w of o[i]
+inline constexpr int kInts = 9;       // 12 int64 (2 per texel, low word first), see kI*
+// Rectangles and fragments reuse texels kS… as 10 doubles (2 per texel, low word first):
+// s = sBase + fx·sDx + fy·sDy with fx = (16x + 8 − x0)·invW, fy likewise (rasterRectangle).
+inline constexpr int kDoubles = 4;
+inline constexpr int kDSBase = 0, kDSDx = 1, kDSDy = 2, kDTBase = 3, kDTDx = 4, kDTDy = 5, kDX0 = 6, kDY0 = 7,
+                     kDInvW = 8, kDInvH = 9;
+// Kinds (header.x & 15) and flags.
+inline constexpr u32 kKindTriangle = 0;
+inline constexpr u32 kKindLinear = 1;             // rectangle or constant fragment: no edges
+inline constexpr u32 kFlagFogVaries = 1u << 4;    // fog interpolated (else header.y)
+inline constexpr u32 kFlagColorVaries = 1u << 5;  // primary colour interpolated (else o[0]'s slot)
+inline constexpr u32 kFlagSecVaries = 1u << 6;    // secondary colour interpolated (else o[0]'s slot)
+inline constexpr u32 kFlagSwapped = 1u << 7;      // negative area: edges in in0, in2, in1 order
+inline constexpr u32 kFlagThrough = 1u << 8;      // texture coordinates screen-linear
+inline constexpr int kEdgeThresholdShift = 9;      // bits 9–11: edge i needs E_i ≥ bit (top-left rule)
+// Int64. Edge i (opposite the i-th vertex of in0, in1, in2 — or in0, in2, in1 when swapped):
+// E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). Depth plane (base, kx, ky).
+inline constexpr int kIA = 0, kIB = 3, kIC = 6, kIZ = 9;
+static_assert(kIZ + 3 <= 2 * (kTexels - kInts));
+static_assert(kDoubles + 5 <= kInts);  // 10 doubles, 2 per texel
+}  // namespace tri
 
 // Return false and set err for keys the generator cannot express (e.g. framebuffer fetch
 // requested but not in caps).

@@ -29,8 +29,13 @@ struct HostCaps {
     u8 depthFetch = 0;      // GL_ARM_shader_framebuffer_fetch_depth_stencil: read the depth target
     u8 textureBarrier = 0;  // GL_ARB_texture_barrier / GL 4.5: sample the bound target between barriers
     u8 programBinary = 0;   // GL_ARB_get_program_binary with at least one format
+    // GLSL 4.00 with ARB_gpu_shader_fp64 + ARB_gpu_shader_int64: triangle attributes are evaluated
+    // per pixel from the software rasteriser's own per-triangle setup (exact parity with it);
+    // without, GL interpolates them in float (one step off at colour/texel boundaries).
+    u8 exactInterp = 0;
+    u8 reserved[3] = {};
 };
-static_assert(sizeof(HostCaps) == 4);
+static_assert(sizeof(HostCaps) == 8);
 
 // How the fragment shader sees the destination (frame-buffer) pixel.
 enum class DstRead : u8 {

@@ -152,6 +152,17 @@ TEST(GlShaderGen, FuzzedKeysCompileAndLink) {
     }
     EXPECT_EQ(built, 256);
     EXPECT_GT(cache.stats().compiles, 0u);
+    // The float-interpolation variant (hosts without GL 4.0 + ARB_gpu_shader_int64).
+    const sg::HostCaps floatCaps = ctx->caps().hostCaps(false, true);
+    EXPECT_EQ(floatCaps.exactInterp, 0);
+    gl::ProgramCache floatCache(*ctx, floatCaps, "", "");
+    for (int i = 0; i < 64; ++i) {
+        const sg::FsKey fk = randomKey(rng, floatCaps);
+        sg::VsKey vk;
+        vk.flatShade = fk.flatShade;
+        std::string e;
+        ASSERT_NE(floatCache.get(vk, fk, &e), nullptr) << sg::describe(fk) << "\n" << e;
+    }
 }
 
 // A scene that needs several programs: clear, textured blended rectangles, stencil.

@@ -12,9 +12,10 @@
 
 namespace ge::gl {
 
-shadergen::HostCaps GlCaps::hostCaps(bool baseline) const {
+shadergen::HostCaps GlCaps::hostCaps(bool baseline, bool floatInterp) const {
     shadergen::HostCaps c;
-    if (baseline) return c;  // GL 3.3 core only: destination reads go through copies
+    c.exactInterp = exactInterp && !floatInterp ? 1 : 0;
+    if (baseline) return c;  // no fetch/barrier: destination reads go through copies
     c.fbFetch = fbFetch ? 1 : 0;
     c.depthFetch = depthFetch ? 1 : 0;
     c.textureBarrier = textureBarrier ? 1 : 0;
@@ -31,6 +32,7 @@ std::string GlCaps::summary() const {
     if (dualSourceBlend) s += " dual_source_blend";
     if (bufferStorage) s += " buffer_storage";
     if (programBinary) s += " program_binary";
+    if (exactInterp) s += " exact_interp";
     return s;
 }
 
@@ -158,7 +160,7 @@ bool GlContext::init(std::string& err) {
     }
     GLint n = 0;
     gl.GetIntegerv(GL_NUM_EXTENSIONS, &n);
-    bool arbBarrier = false;
+    bool arbBarrier = false, int64 = false;
     for (GLint i = 0; i < n; ++i) {
         const char* e = reinterpret_cast<const char*>(gl.GetStringi(GL_EXTENSIONS, GLuint(i)));
         if (!e) continue;
@@ -169,8 +171,10 @@ bool GlContext::init(std::string& err) {
         if (!std::strcmp(e, "GL_ARB_blend_func_extended")) caps_.dualSourceBlend = true;
         if (!std::strcmp(e, "GL_ARB_buffer_storage")) caps_.bufferStorage = true;
         if (!std::strcmp(e, "GL_ARB_get_program_binary")) caps_.programBinary = true;
+        if (!std::strcmp(e, "GL_ARB_gpu_shader_int64")) int64 = true;
     }
     caps_.textureBarrier = gl.TextureBarrier && (arbBarrier || caps_.major * 10 + caps_.minor >= 45);
+    caps_.exactInterp = int64 && caps_.major >= 4;
     GLint formats = 0;
     gl.GetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
     if (formats < 1) caps_.programBinary = false;

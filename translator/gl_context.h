@@ -22,8 +22,10 @@ struct GlCaps {
     bool dualSourceBlend = false; // GL_ARB_blend_func_extended (detected; blending is in-shader)
     bool bufferStorage = false;   // GL_ARB_buffer_storage (detected)
     bool programBinary = false;   // GL_ARB_get_program_binary with ≥ 1 format
-    // What the shader generator may use, after the `baseline` switch.
-    shadergen::HostCaps hostCaps(bool baseline) const;
+    bool exactInterp = false;     // GL 4.0 (fp64, precise) + GL_ARB_gpu_shader_int64
+    // What the shader generator may use, after the `baseline` switch. Exact interpolation is
+    // kept under `baseline` (which is about destination reads); floatInterp turns it off.
+    shadergen::HostCaps hostCaps(bool baseline, bool floatInterp = false) const;
     std::string summary() const;
 };
 

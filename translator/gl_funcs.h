@@ -44,6 +44,7 @@ namespace ge::gl {
     X(PFNGLBINDBUFFERPROC, BindBuffer)                                                \
     X(PFNGLBUFFERDATAPROC, BufferData)                                                \
     X(PFNGLBUFFERSUBDATAPROC, BufferSubData)                                          \
+    X(PFNGLTEXBUFFERPROC, TexBuffer)                                                  \
     X(PFNGLGENVERTEXARRAYSPROC, GenVertexArrays)                                      \
     X(PFNGLDELETEVERTEXARRAYSPROC, DeleteVertexArrays)                                \
     X(PFNGLBINDVERTEXARRAYPROC, BindVertexArray)                                      \

@@ -38,7 +38,7 @@ bool overlaps(const PrimBounds& a, const PrimBounds& b) {
 }
 
 shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
-    shadergen::HostCaps c = caps.hostCaps(opt.baseline);
+    shadergen::HostCaps c = caps.hostCaps(opt.baseline, opt.floatInterpolation);
     if (opt.disableFramebufferFetch) c.fbFetch = c.depthFetch = 0;
     return c;
 }
@@ -100,6 +100,18 @@ public:
             gl_.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, snapDepth_, 0);
         }
         gl_.Enable(GL_DEPTH_CLAMP);  // positions carry z = 0; depth comes from gl_FragDepth
+        if (caps_.exactInterp) {
+            // Triangle records (tri_setup.h) in a buffer texture on their own unit; the buffer's
+            // contents are replaced per flush.
+            gl_.GenBuffers(1, &recordBuf_);
+            gl_.BindBuffer(GL_TEXTURE_BUFFER, recordBuf_);
+            gl_.BufferData(GL_TEXTURE_BUFFER, sizeof(TriRecord), nullptr, GL_STREAM_DRAW);
+            gl_.GenTextures(1, &recordTex_);
+            gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
+            gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
+            gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, recordBuf_);
+            gl_.ActiveTexture(GL_TEXTURE0);
+        }
     }
 
     ~GlRenderer() override {
@@ -107,6 +119,8 @@ public:
         textures_.clear();
         gl_.DeleteBuffers(1, &vbo_);
         gl_.DeleteVertexArrays(1, &vao_);
+        if (recordTex_) gl_.DeleteTextures(1, &recordTex_);
+        if (recordBuf_) gl_.DeleteBuffers(1, &recordBuf_);
         if (snapColor_) gl_.DeleteTextures(1, &snapColor_);
         if (snapDepth_) gl_.DeleteTextures(1, &snapDepth_);
         if (snapFbo_) gl_.DeleteFramebuffers(1, &snapFbo_);
@@ -119,7 +133,7 @@ public:
         const GeState& st = *p.state;
         if (!beginDraw(st, shadergen::DrawFlags::fromState(st))) return;
         std::string err;
-        if (!pipeline_.processPrim(mem_, st, p, VertexSettings::fromState(st), geo_, &err)) noteError(err);
+        if (!pipeline_.processPrim(mem_, st, p, vertexSettings(st), geo_, &err)) noteError(err);
     }
 
     void drawPatch(const PatchPacket& p) override {
@@ -127,7 +141,7 @@ public:
         const GeState& st = *p.state;
         if (!beginDraw(st, shadergen::DrawFlags::fromState(st))) return;
         std::string err;
-        if (!pipeline_.processPatch(mem_, st, p, VertexSettings::fromState(st), geo_, &err)) noteError(err);
+        if (!pipeline_.processPatch(mem_, st, p, vertexSettings(st), geo_, &err)) noteError(err);
     }
 
     void drawImmediate(const ImmPacket& p) override {
@@ -141,7 +155,7 @@ public:
         df.texture = (f >> 21) & 1;
         df.fog = (f >> 22) & 1;
         df.dither = (f >> 23) & 1;
-        VertexSettings vs = VertexSettings::fromState(st);
+        VertexSettings vs = vertexSettings(st);
         vs.gouraud = df.gouraud;
         vs.cull = ((f >> 19) & 1) && !st.isClearMode();
         vs.cullCcw = (f >> 20) & 1;
@@ -221,6 +235,12 @@ public:
     const std::string& lastError() const { return lastError_; }
 
 private:
+    VertexSettings vertexSettings(const GeState& st) const {
+        VertexSettings vs = VertexSettings::fromState(st);
+        vs.records = caps_.exactInterp != 0;
+        return vs;
+    }
+
     void noteError(const std::string& e) {
         if (lastError_.empty()) lastError_ = e;
         ++errors_;
@@ -436,6 +456,19 @@ private:
         applyState(s, *prog, dstColor, dstDepth);
 
         gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(GlVertex)), verts.data(), GL_STREAM_DRAW);
+        if (caps_.exactInterp) {
+            if (geo_.records.size() * 3 != verts.size()) {
+                noteError("internal: triangle records out of step with vertices");
+                geo_.clear();
+                return;
+            }
+            gl_.BindBuffer(GL_TEXTURE_BUFFER, recordBuf_);
+            gl_.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(geo_.records.size() * sizeof(TriRecord)),
+                           geo_.records.data(), GL_STREAM_DRAW);
+            gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
+            gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
+            gl_.ActiveTexture(GL_TEXTURE0);
+        }
         const GLenum mode = GL_TRIANGLES;
         Rect drawn;
         const Rect sc{s.scissor[0], s.scissor[1], s.scissor[2], s.scissor[3]};
@@ -518,6 +551,7 @@ private:
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
     GLuint snapColor_ = 0, snapDepth_ = 0, snapFbo_ = 0, presentTex_ = 0;
+    GLuint recordBuf_ = 0, recordTex_ = 0;
     GlStats stats_;
     std::string lastError_;
     u64 errors_ = 0;

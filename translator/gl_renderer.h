@@ -30,6 +30,10 @@ struct GlOptions {
     // Testing aid: ignore framebuffer fetch so destination reads use the texture-barrier path
     // (the path a driver without EXT_shader_framebuffer_fetch takes). Additive to the spec.
     bool disableFramebufferFetch = false;
+    // Interpolate triangle attributes in GL float even where exact interpolation (per-pixel
+    // evaluation of the software rasteriser's setup; GL 4.0 + ARB_gpu_shader_int64) is available:
+    // the path of hosts without it. Additive to the spec, for tests and comparisons.
+    bool floatInterpolation = false;
 };
 
 struct GlStats {

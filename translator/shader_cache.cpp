@@ -193,6 +193,8 @@ void ProgramCache::lookupUniforms(Program& p) {
     if (p.tex >= 0) gl.Uniform1i(p.tex, shadergen::kUnitTex);
     if (p.dstColor >= 0) gl.Uniform1i(p.dstColor, shadergen::kUnitDstColor);
     if (p.dstDepth >= 0) gl.Uniform1i(p.dstDepth, shadergen::kUnitDstDepth);
+    const GLint tris = loc(shadergen::kTrisUniform);
+    if (tris >= 0) gl.Uniform1i(tris, shadergen::kUnitTris);
     gl.UseProgram(0);
 }
 

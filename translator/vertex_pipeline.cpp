@@ -31,6 +31,55 @@ GlVertex toGl(const soft::ScreenVertex& v, bool perspective) {
     return g;
 }
 
+// Grows the triangle g by kGrow pixels on every side: each edge moves outward and the corners
+// become the offset edges' intersections (3 vertices in out). Where a corner would move further
+// than kMiterLimit (a needle-thin triangle) the corners are bevelled instead: a hexagon with two
+// points per corner, one offset along each adjacent edge's normal (6 vertices, convex, in order).
+// Returns the number of vertices written (3 unchanged when the triangle is degenerate).
+int growTriangle(const GlVertex* g, GlVertex* out) {
+    constexpr double kGrow = 1.0 / 16.0, kMiterLimit = 4.0;
+    for (int i = 0; i < 3; ++i) out[i] = g[i];
+    double px[3], py[3];
+    for (int i = 0; i < 3; ++i) px[i] = g[i].x, py[i] = g[i].y;
+    const double area = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+    if (!(std::fabs(area) > 0.0)) return 3;
+    const double orient = area > 0 ? 1.0 : -1.0;
+    // Edge i from corner i to corner i+1: outward unit normal n_i and offset line n_i·p = c_i.
+    double nx[3], ny[3], cc[3];
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        const double dx = px[j] - px[i], dy = py[j] - py[i];
+        const double len = std::sqrt(dx * dx + dy * dy);
+        if (!(len > 0.0)) return 3;
+        nx[i] = dy / len * orient, ny[i] = -dx / len * orient;
+        cc[i] = nx[i] * px[i] + ny[i] * py[i] + kGrow;
+    }
+    double qx[3], qy[3];
+    bool miter = true;
+    for (int i = 0; i < 3 && miter; ++i) {
+        const int e0 = (i + 2) % 3, e1 = i;  // the edges meeting at corner i
+        const double det = nx[e0] * ny[e1] - ny[e0] * nx[e1];
+        if (!(std::fabs(det) > 1e-9)) {
+            miter = false;
+            break;
+        }
+        qx[i] = (cc[e0] * ny[e1] - ny[e0] * cc[e1]) / det;
+        qy[i] = (nx[e0] * cc[e1] - cc[e0] * nx[e1]) / det;
+        miter = std::fabs(qx[i] - px[i]) + std::fabs(qy[i] - py[i]) < kMiterLimit;
+    }
+    if (miter) {
+        for (int i = 0; i < 3; ++i) out[i].x = float(qx[i]), out[i].y = float(qy[i]);
+        return 3;
+    }
+    for (int i = 0; i < 3; ++i) {
+        const int e0 = (i + 2) % 3, e1 = i;
+        out[2 * i] = out[2 * i + 1] = g[i];
+        out[2 * i].x = float(px[i] + kGrow * nx[e0]), out[2 * i].y = float(py[i] + kGrow * ny[e0]);
+        out[2 * i + 1].x = float(px[i] + kGrow * nx[e1]), out[2 * i + 1].y = float(py[i] + kGrow * ny[e1]);
+    }
+    return 6;
+}
+
 PrimBounds boundsOf(const GlVertex* v, int n) {
     float x0 = v[0].x, x1 = v[0].x, y0 = v[0].y, y1 = v[0].y;
     for (int i = 1; i < n; ++i) {
@@ -46,7 +95,7 @@ PrimBounds boundsOf(const GlVertex* v, int n) {
 
 VertexSettings VertexSettings::fromState(const GeState& st) {
     VertexSettings vs;
-    vs.gouraud = st.SHADE_gouraud();
+    vs.gouraud = st.SHADE_gouraud() && !st.isClearMode();  // clear mode draws flat (as the software model)
     vs.cull = st.BCE_on() && !st.isClearMode();
     vs.cullCcw = st.CULL_ccw();
     vs.texture = st.TME_on() && !st.isClearMode();
@@ -67,6 +116,7 @@ soft::RasterParams VertexPipeline::rasterParams() const {
     rp.needLod = vs_.texture && st_->TLEVEL_mode() == 0;
     rp.needW = vs_.texture && st_->TLEVEL_mode() == 2;
     rp.fog = vs_.fog;
+    rp.through = ts_.through;
     rp.texW0 = float(st_->textureWidth(0));
     rp.texH0 = float(st_->textureHeight(0));
     return rp;
@@ -86,6 +136,11 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
                                   const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
     const bool persp = !ts_.through;
     GlVertex g[3] = {toGl(a, persp), toGl(b, persp), toGl(c, persp)};
+    // The software rasteriser samples triangles at 16·x + o (raster.h triangleSampleOffset), GL
+    // at the pixel centre 16·x + 8: moving the triangle by (8 − o)/16 pixel (exact in float on
+    // the 1/16 grid) makes GL cover the same pixels.
+    const float shift = float(8 - soft::triangleSampleOffset()) / 16.0f;
+    for (GlVertex& v : g) v.x += shift, v.y += shift;
     if (!vs_.gouraud) {
         // Flat shading: the provoking (last) vertex's colours (ref §8.1).
         for (GlVertex& v : g) {
@@ -93,10 +148,31 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
             v.color2[0] = prov.secondary[0], v.color2[1] = prov.secondary[1], v.color2[2] = prov.secondary[2];
         }
     }
-    out_->tris.insert(out_->tris.end(), g, g + 3);
-    PrimBounds bb = boundsOf(g, 3);
-    bb.joinPrev = joinPrev;
-    out_->triBounds.push_back(bb);
+    if (!vs_.records) {
+        out_->tris.insert(out_->tris.end(), g, g + 3);
+        PrimBounds bb = boundsOf(g, 3);
+        bb.joinPrev = joinPrev;
+        out_->triBounds.push_back(bb);
+        return;
+    }
+    // With exact interpolation the fragment shader also applies the software rasteriser's edge
+    // test (its top-left rule on the exact edge functions) and discards what that excludes. GL
+    // then only has to cover a superset: the triangle is grown by a small margin, so that neither
+    // GL's own tie rule nor its clipping of triangles reaching outside the target (which moves
+    // their edges by rounding) can lose a pixel on an edge. A bevelled (hexagon) shape is drawn
+    // as a fan of four triangles sharing the record.
+    GlVertex grown[6];
+    const int n = growTriangle(g, grown);
+    TriRecord rec;
+    packTriangle(rasterParams(), a, b, c, prov, rec);
+    PrimBounds bb = boundsOf(grown, n);
+    for (int k = 1; k + 1 < n; ++k) {
+        const GlVertex t[3] = {grown[0], grown[k], grown[k + 1]};
+        out_->tris.insert(out_->tris.end(), t, t + 3);
+        bb.joinPrev = k == 1 ? joinPrev : 1;
+        out_->triBounds.push_back(bb);
+        out_->records.push_back(rec);
+    }
 }
 
 void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
@@ -128,6 +204,11 @@ void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVe
     out_->triBounds.push_back(bb);
     bb.joinPrev = 1;
     out_->triBounds.push_back(bb);
+    if (vs_.records) {
+        out_->records.emplace_back();
+        packRectangle(rasterParams(), v0, v1, out_->records.back());
+        out_->records.push_back(out_->records.back());
+    }
 }
 
 void VertexPipeline::sinkFlush(void* ctx, const soft::Fragment* f, size_t n) {
@@ -158,10 +239,15 @@ void VertexPipeline::emitFragments(const soft::Fragment* f, size_t n) {
         out_->triBounds.push_back(bb);
         bb.joinPrev = 1;
         out_->triBounds.push_back(bb);
+        if (vs_.records) {
+            out_->records.emplace_back();
+            packFragment(f[i], out_->records.back());
+            out_->records.push_back(out_->records.back());
+        }
     }
 }
 
-void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic) {
+void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
     const soft::ClipVertex& a = cverts_[ia];
     const soft::ClipVertex& b = cverts_[ib];
     const soft::ClipVertex& c = cverts_[ic];
@@ -183,13 +269,88 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic) {
         }
     }
     if (culled(a.sv, b.sv, c.sv)) return;
-    emitTriangle(a.sv, b.sv, c.sv, c.sv, 0);
+    // `ring`: the order the software model hands the vertices to its rasteriser in (its float
+    // attribute sums depend on it); (a, b, c) is the winding for culling and clipping.
+    if (ring) emitTriangle(cverts_[ring[0]].sv, cverts_[ring[1]].sv, cverts_[ring[2]].sv, c.sv, 0);
+    else emitTriangle(a.sv, b.sv, c.sv, c.sv, 0);
 }
 
 void VertexPipeline::rectangle(u32 ia, u32 ib) {
     const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
     if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
+    if (!ts_.through && ts_.texMap == 1) {
+        rectangleAsTriangles(v[0]->sv, v[1]->sv);
+        return;
+    }
     emitRect(v[0]->sv, v[1]->sv);
+}
+
+void VertexPipeline::rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
+    // Rectangles with texture projection are two triangles (ref §8.2), as in the software model:
+    // corners textured by the orientation table, colour/Z/fog of the second vertex.
+    const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
+    const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
+    if (xl == xr || yt == yb) return;
+    const bool left = v0.x < v1.x, above = v0.y < v1.y;
+    auto corner = [&](int fx, int fy) {
+        soft::ScreenVertex c = v1;
+        c.x = fx ? xr : xl;
+        c.y = fy ? yb : yt;
+        c.w = 1.0f;
+        const soft::ScreenVertex* sFrom;
+        const soft::ScreenVertex* tFrom;
+        if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
+        else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
+        else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
+        else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
+        c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
+        return c;
+    };
+    const soft::ScreenVertex tl = corner(0, 0), tr = corner(1, 0), bl = corner(0, 1), br = corner(1, 1);
+    emitTriangle(tl, tr, bl, bl, 0);
+    emitTriangle(tr, br, bl, bl, 1);
+}
+
+bool VertexPipeline::stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
+    // Mirrors soft_renderer.cpp stripQuadAsRect (the reference renderer's
+    // DetectRectangleFromStrip): four strip vertices forming an axis-aligned rectangle with
+    // matching attributes are drawn as a RECTANGLES primitive.
+    const soft::ClipVertex* d[4] = {&cverts_[q[0]], &cverts_[q[1]], &cverts_[q[2]], &cverts_[q[3]]};
+    for (const soft::ClipVertex* c : d)
+        if (!c->valid) return false;
+    const bool through = ts_.through;
+    auto compatible = [&](const soft::ClipVertex& c) {
+        return through || !(c.outside || c.clip[3] < 0.0f || c.clip[2] < -c.clip[3]);
+    };
+    if (!compatible(*d[0])) return false;
+    int itl = 0, ibr = 0;
+    for (int i = 1; i < 4; ++i) {
+        const soft::ScreenVertex &a = d[0]->sv, &b = d[i]->sv;
+        if (std::memcmp(a.color, b.color, 4) != 0) return false;
+        if (a.z != b.z && rectDetect_.depthMatters) return false;
+        if (!through) {
+            if (std::memcmp(a.secondary, b.secondary, 3) != 0 || !compatible(*d[i])) return false;
+            if (rectDetect_.textured && d[i]->clip[3] != d[0]->clip[3]) {
+                constexpr float halfTexel = 0.5f / 512.0f;
+                if (d[i]->clip[3] - halfTexel > d[0]->clip[3] || d[i]->clip[3] + halfTexel < d[0]->clip[3])
+                    return false;
+            }
+            if (rectDetect_.textured && b.q != a.q) return false;
+            if (rectDetect_.fog && b.fog != a.fog) {
+                constexpr float halfStep = 0.5f / 255.0f;
+                if (b.fog - halfStep > a.fog || b.fog + halfStep < a.fog) return false;
+            }
+        }
+        if (b.x <= d[itl]->sv.x && b.y <= d[itl]->sv.y) itl = i;
+        if (b.x >= d[ibr]->sv.x && b.y >= d[ibr]->sv.y) ibr = i;
+    }
+    tl = q[itl], br = q[ibr];
+    const soft::ScreenVertex &p0 = d[0]->sv, &p1 = d[1]->sv, &p2 = d[2]->sv, &p3 = d[3]->sv;
+    if (p0.x == p1.x && p0.y == p2.y && p2.x == p3.x && p1.y == p3.y)
+        return !rectDetect_.textured || (p0.s == p1.s && p0.t == p2.t && p2.s == p3.s && p1.t == p3.t);
+    if (p0.x == p2.x && p0.y == p1.y && p1.x == p3.x && p2.y == p3.y)
+        return !rectDetect_.textured || (p0.s == p2.s && p0.t == p1.t && p1.s == p3.s && p2.t == p3.t);
+    return false;
 }
 
 void VertexPipeline::line(u32 ia, u32 ib) {
@@ -232,17 +393,39 @@ void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool
             for (size_t i = 0; i + 2 < n; i += 3) triangle(seq[i], seq[i + 1], seq[i + 2]);
             for (size_t i = n - n % 3; i < n; ++i) keep.push_back(seq[i]);
             break;
-        case GE_PRIM_TRIANGLE_STRIP:
+        case GE_PRIM_TRIANGLE_STRIP: {
+            // As the software model: a fresh, unculled strip of an even number of vertices is
+            // first read as quads, each drawn as a rectangle while it is one (stripQuadAsRect).
+            size_t start = 0;
+            if (rectDetect_.allowed && !vs_.cull && !stripOdd_ && n >= 4 && (n & 1) == 0) {
+                for (size_t base = 0; base + 2 < n; base += 2) {
+                    const u32 quad[4] = {seq[base], seq[base + 1], seq[base + 2], seq[base + 3]};
+                    u32 tl = 0, br = 0;
+                    if (!stripQuadAsRect(quad, tl, br)) break;
+                    rectangle(tl, br);
+                    start = base + 2;
+                    if (base + 4 >= n) start = n;
+                }
+            }
             // Every second triangle is wound the other way round; the newest vertex provokes.
-            for (size_t i = 2; i < n; ++i) {
-                if (!stripOdd_) triangle(seq[i - 2], seq[i - 1], seq[i]);
-                else triangle(seq[i - 1], seq[i - 2], seq[i]);
+            // Rasterised in the reference's ring order: vertex k of the strip in slot k mod 3
+            // (soft_renderer.cpp assemble).
+            for (size_t i = start + 2; i < n; ++i) {
+                u32 ring[3];
+                for (size_t k = i - 2; k <= i; ++k) ring[k % 3] = seq[k];
+                if (!stripOdd_) triangle(seq[i - 2], seq[i - 1], seq[i], ring);
+                else triangle(seq[i - 1], seq[i - 2], seq[i], ring);
                 stripOdd_ = !stripOdd_;
             }
             for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
             break;
+        }
         case GE_PRIM_TRIANGLE_FAN:
-            for (size_t i = 2; i < n; ++i) triangle(seq[0], seq[i - 1], seq[i]);
+            // Ring order of fans: centre in slot 0, odd vertices in slot 1, even ones in slot 2.
+            for (size_t i = 2; i < n; ++i) {
+                const u32 ring[3] = {seq[0], (i & 1) ? seq[i] : seq[i - 1], (i & 1) ? seq[i - 1] : seq[i]};
+                triangle(seq[0], seq[i - 1], seq[i], ring);
+            }
             if (n >= 2) keep = {seq[0], seq[n - 1]};
             else if (n == 1) keep = {seq[0]};
             break;
@@ -308,7 +491,13 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
             }
         }
     }
+    rectDetect_.allowed = pending_.empty();
+    rectDetect_.textured = st.TME_on() && !st.isClearMode();
+    rectDetect_.fog = st.FGE_on() && !ts_.through && !st.isClearMode();
+    rectDetect_.depthMatters =
+        st.isClearMode() ? st.CMODE_depth() : st.ZTE_on() && (st.ZTEST_func() != 1 || !st.ZMSK_nowrite());
     assemble(p.prim, seq_, true);
+    rectDetect_.allowed = false;
     return true;
 }
 

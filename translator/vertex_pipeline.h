@@ -21,6 +21,7 @@
 #include "hle/vertex_decoder.h"
 #include "softmodel/raster.h"
 #include "softmodel/transform.h"
+#include "translator/tri_setup.h"
 
 namespace ge::gl {
 
@@ -45,9 +46,11 @@ struct PrimBounds {
 struct Geometry {
     std::vector<GlVertex> tris;  // 3 per triangle
     std::vector<PrimBounds> triBounds;
+    std::vector<TriRecord> records;  // 1 per triangle when VertexSettings::records (exact interpolation)
     void clear() {
         tris.clear();
         triBounds.clear();
+        records.clear();
     }
     bool empty() const { return tris.empty(); }
 };
@@ -60,6 +63,7 @@ struct VertexSettings {
     bool texture = false;
     bool fog = false;
     int clip[4] = {0, 0, -1, -1};  // inclusive clip rectangle for lines/points (scissor ∩ region)
+    bool records = false;  // also build the per-triangle records of exact interpolation (tri_setup.h)
     static VertexSettings fromState(const GeState& st);
 };
 
@@ -77,13 +81,15 @@ public:
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
-    void triangle(u32 a, u32 b, u32 c);
+    void triangle(u32 a, u32 b, u32 c, const u32* ring = nullptr);
     void rectangle(u32 a, u32 b);
     void line(u32 a, u32 b);
     void point(u32 a);
     void emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c,
                       const soft::ScreenVertex& prov, int joinPrev);
     void emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
+    void rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
+    bool stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const;
     void emitFragments(const soft::Fragment* f, size_t n);
     bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
     soft::RasterParams rasterParams() const;
@@ -103,6 +109,12 @@ private:
     GePrimType pendingPrim_ = GE_PRIM_POINTS;
     bool stripOdd_ = false;
     std::vector<soft::Fragment> fragBuf_;
+    // Strip-as-rectangle detection, as the software model (soft_renderer.cpp stripQuadAsRect):
+    // allowed only for a fresh PRIM, with what the comparison needs from the state.
+    struct RectDetect {
+        bool allowed = false;
+        bool depthMatters = false, textured = false, fog = false;
+    } rectDetect_;
 };
 
 }  // namespace ge::gl

@@ -1,0 +1,34 @@
+// Per-triangle records for exact interpolation on the GL path (shadergen/shader_gen.h `tri`
+// layout, HostCaps::exactInterp).
+//
+// Why: GL interpolates attributes in float from the vertices; the GE (and the software model)
+// evaluates a fixed-point depth plane anchored at a vertex and single-precision sums of vertex
+// values weighted by exact edge functions, at its own sample point (16·x + 7), in its own vertex
+// order. These records carry the software rasteriser's own per-triangle numbers — its oriented
+// edge functions and sample offset (soft::triangleSampleOffset), its depth plane
+// (soft::attributePlane), its attribute order, weight reciprocal and constant-attribute
+// shortcuts — and the fragment shader (shadergen emitExactHelpers) repeats rasterTriangle's
+// per-pixel arithmetic on them. Setup changes in softmodel/raster.cpp reach GL through the shared
+// functions; a change to the per-pixel formulas must be mirrored in shader_gen.cpp (the GlParity
+// tests fail until it is).
+#pragma once
+#include "hle/types.h"
+#include "shadergen/shader_gen.h"
+#include "softmodel/raster.h"
+
+namespace ge::gl {
+
+struct TriRecord {
+    u32 w[shadergen::tri::kTexels * 4];
+};
+
+// Triangle (in0, in1, in2) with flat-shading colour `prov`, as soft::rasterTriangle sees it.
+void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, const soft::ScreenVertex& in1,
+                  const soft::ScreenVertex& in2, const soft::ScreenVertex& prov, TriRecord& out);
+// Rectangle from two corners, as soft::rasterRectangle sees it (both GL triangles get this record).
+void packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
+                   TriRecord& out);
+// One finished fragment (lines and points come from the software rasteriser as fragments).
+void packFragment(const soft::Fragment& f, TriRecord& out);
+
+}  // namespace ge::gl
