@@ -176,7 +176,7 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
     case PrimKind::Rect: {
         const int lo = std::min(v[0]->y, v[1]->y), hi = std::max(v[0]->y, v[1]->y);
         y1 = int(ceilDiv(lo - 8, 16));
-        y2 = int(ceilDiv(hi - 8, 16)) - 1;
+        y2 = int(floorDiv(hi - 8, 16));  // may include a row whose centre is on the edge
         break;
     }
     case PrimKind::Triangle: {
@@ -384,58 +384,89 @@ void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const Scree
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
     if (xl == xr || yt == yb) return;  // zero width or height draws nothing (§8.11)
-    // Centres 16·p + 8 in [xl, xr) × [yt, yb) (§8.1).
+    // The reference renderer (PPSSPP's software GE, Rasterizer.cpp DrawRectangle) walks the box in
+    // 2×2 pixel quads starting at the first covered pixel: a left/top edge up to the pixel centre
+    // includes the pixel (centres 16·p + 8 ≥ edge, §8.1). Towards the far edge, the first pixel of
+    // each pair needs its centre strictly inside (16·p + 8 < edge) but the second pixel of a pair
+    // is also drawn when its centre lies exactly on the edge — so an edge on a pixel centre covers
+    // that pixel only when it falls on the odd pixel of a pair counted from the first one.
     const int px1 = std::max<int>(int(ceilDiv(xl - 8, 16)), rp.clipX1);
-    const int px2 = std::min<int>(int(ceilDiv(xr - 8, 16)) - 1, rp.clipX2);
     const int py1 = std::max<int>(int(ceilDiv(yt - 8, 16)), rp.clipY1);
-    const int py2 = std::min<int>(int(ceilDiv(yb - 8, 16)) - 1, rp.clipY2);
-    if (px1 > px2 || !band.overlaps(py1, py2)) return;
+    auto lastCovered = [](int first, int far, int clip) {
+        int last = int(ceilDiv(far - 8, 16)) - 1;  // centre strictly before the far edge
+        if (((far - 8) & 15) == 0 && ((last + 1 - first) & 1) == 1) ++last;  // odd pixel on the edge
+        return std::min(last, clip);
+    };
+    const int px2 = lastCovered(px1, xr, rp.clipX2);
+    const int py2 = lastCovered(py1, yb, rp.clipY2);
+    if (px1 > px2 || py1 > py2 || !band.overlaps(py1, py2)) return;
 
-    // Texture orientation by where v0 lies relative to v1 (§8.2):
-    //   s = sBase + fx·sDx + fy·sDy, t = tBase + fx·tDx + fy·tDy, fx, fy ∈ [0, 1) across the box.
-    float sBase = 0, sDx = 0, sDy = 0, tBase = 0, tDx = 0, tDy = 0;
-    const bool left = v0.x < v1.x, above = v0.y < v1.y;
-    if (left && above) {  // top-left gets (v0.s, v0.t); +X: S v0→v1; +Y: T v0→v1
-        sBase = v0.s, sDx = v1.s - v0.s, tBase = v0.t, tDy = v1.t - v0.t;
-    } else if (left) {  // v0 left and below: (v1.s, v0.t); +X: T v0→v1; +Y: S v1→v0
-        sBase = v1.s, sDy = v0.s - v1.s, tBase = v0.t, tDx = v1.t - v0.t;
-    } else if (above) {  // v0 right and above: (v0.s, v1.t); +X: T v1→v0; +Y: S v0→v1
-        sBase = v0.s, sDy = v1.s - v0.s, tBase = v1.t, tDx = v0.t - v1.t;
-    } else {  // v0 right and below: (v1.s, v1.t); +X: S v1→v0; +Y: T v1→v0
-        sBase = v1.s, sDx = v0.s - v1.s, tBase = v1.t, tDy = v0.t - v1.t;
+    // Texture coordinates in single precision as the reference steps them (§8.2 orientation): the
+    // change per two pixels, 2·Δ / (size in pixels), from the box's top-left corner moved to the
+    // first pixel centre; then added once per pair of columns along a row and once per pair of rows
+    // down the box, the odd pixel of a pair adding half a step. The level of detail comes from those
+    // half steps, per quad (§6.6).
+    float rowS = 0, rowT = 0, stxS = 0, stxT = 0, styS = 0, styT = 0;
+    if (rp.textured) {
+        const float diffX = float(xr - xl) / 16.0f, diffY = float(yb - yt) / 16.0f;
+        const float diffS = v1.s - v0.s, diffT = v1.t - v0.t;
+        const bool left = v0.x < v1.x, above = v0.y < v1.y;
+        if (left && above) {  // top-left gets (v0.s, v0.t); +X: S v0→v1; +Y: T v0→v1
+            rowS = v0.s, rowT = v0.t;
+            stxS = 2.0f * diffS / diffX, styT = 2.0f * diffT / diffY;
+        } else if (left) {  // v0 left and below: (v1.s, v0.t); +X: T v0→v1; +Y: S v1→v0
+            rowS = v1.s, rowT = v0.t;
+            stxT = 2.0f * diffT / diffX, styS = 2.0f * -diffS / diffY;
+        } else if (above) {  // v0 right and above: (v0.s, v1.t); +X: T v1→v0; +Y: S v0→v1
+            rowS = v0.s, rowT = v1.t;
+            stxT = 2.0f * -diffT / diffX, styS = 2.0f * diffS / diffY;
+        } else {  // v0 right and below: (v1.s, v1.t); +X: S v1→v0; +Y: T v1→v0
+            rowS = v1.s, rowT = v1.t;
+            stxS = 2.0f * -diffS / diffX, styT = 2.0f * -diffT / diffY;
+        }
+        const float offX = float(16 * px1 + 8 - xl), offY = float(16 * py1 + 8 - yt);
+        rowS = rowS + (stxS / 32.0f) * offX;
+        rowT = rowT + (stxT / 32.0f) * offX;
+        rowS = rowS + (styS / 32.0f) * offY;
+        rowT = rowT + (styT / 32.0f) * offY;
     }
-    const double invW = 1.0 / double(xr - xl), invH = 1.0 / double(yb - yt);
-    float lod = 0.0f;
-    if (rp.textured && rp.needLod) lod = lodFromSteps(rp, 16.0 * sDx * invW, 16.0 * tDy * invH);
+    const float hxS = 0.5f * stxS, hxT = 0.5f * stxT, hyS = 0.5f * styS, hyT = 0.5f * styT;
 
     // Colour, Z and fog of the second vertex for every pixel (manual §4.4, §8).
     const u16 z = u16(v1.z);
     const u8 fog = rp.fog ? fogToByte(v1.fog) : 255;
     const float w = rp.needW ? v1.w : 1.0f;
-    for (int y = py1; y <= py2; ++y) {
-        if (!band.owns(y)) {
-            y |= (1 << Band::kShift) - 1;
-            continue;
-        }
-        const double fy = double(16 * y + 8 - yt) * invH;
-        for (int x = px1; x <= px2; ++x) {
-            Fragment& f = sink.next();
-            f.x = x;
-            f.y = y;
-            f.z = z;
-            std::memcpy(f.color, v1.color, 4);
-            std::memcpy(f.secondary, v1.secondary, 3);
-            f.fog = fog;
-            if (rp.textured) {
-                const double fx = double(16 * x + 8 - xl) * invW;
-                f.s = finiteOr0(float(sBase + fx * sDx + fy * sDy));
-                f.t = finiteOr0(float(tBase + fx * tDx + fy * tDy));
-                f.lod = lod;
-            } else {
-                f.s = f.t = 0.0f;
-                f.lod = 0.0f;
+    // Rows go in pairs from py1; every band replays the same float additions, so the result does
+    // not depend on the band split.
+    for (int y0 = py1; y0 <= py2; y0 += 2, rowS = rowS + styS, rowT = rowT + styT) {
+        for (int dy = 0; dy < 2 && y0 + dy <= py2; ++dy) {
+            const int y = y0 + dy;
+            if (!band.owns(y)) continue;
+            float s = rowS, t = rowT;
+            for (int x0 = px1; x0 <= px2; x0 += 2, s = s + stxS, t = t + stxT) {
+                float qs[4] = {s, s + hxS, s + hyS, s + (hxS + hyS)};
+                float qt[4] = {t, t + hxT, t + hyT, t + (hxT + hyT)};
+                float lod = 0.0f;
+                if (rp.textured && rp.needLod) lod = lodFromSteps(rp, qs[1] - qs[0], qt[2] - qt[0]);
+                for (int dx = 0; dx < 2 && x0 + dx <= px2; ++dx) {
+                    Fragment& f = sink.next();
+                    f.x = x0 + dx;
+                    f.y = y;
+                    f.z = z;
+                    std::memcpy(f.color, v1.color, 4);
+                    std::memcpy(f.secondary, v1.secondary, 3);
+                    f.fog = fog;
+                    if (rp.textured) {
+                        f.s = finiteOr0(qs[2 * dy + dx]);
+                        f.t = finiteOr0(qt[2 * dy + dx]);
+                        f.lod = lod;
+                    } else {
+                        f.s = f.t = 0.0f;
+                        f.lod = 0.0f;
+                    }
+                    f.w = w;
+                }
             }
-            f.w = w;
         }
     }
 }

@@ -6,7 +6,8 @@
 // (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
 //   - triangles: top-left fill rule — pixels whose sample point is exactly on a right edge or on a
 //     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1);
-//   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1);
+//   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1), plus a far
+//     edge exactly on the centre of the second pixel of a 2×2 quad (the reference's quad walk);
 //   - lines: a DDA stepping max(|dx|, |dy|) pixels, leaving out the end pixel (§8.11);
 //   - points: the one pixel containing the vertex (§4.1).
 // Attributes (§8.1): Z interpolated linearly in screen space and truncated, triangle colours in

@@ -440,6 +440,46 @@ struct SoftRenderer::Impl {
     // bottom-right vertices (the rectangle's v0 and v1).
     bool stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
         const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
+        int itl = 0, ibr = 0;
+        if (!quadIsFlat(q, itl, ibr)) return false;
+        tl = q[itl], br = q[ibr];
+        const ScreenVertex &p0 = d[0]->sv, &p1 = d[1]->sv, &p2 = d[2]->sv, &p3 = d[3]->sv;
+        // Through-mode texture coordinates are compared in texels as given; s and t here are
+        // scaled by the same level-0 size for every vertex, so equality is unchanged.
+        if (p0.x == p1.x && p0.y == p2.y && p2.x == p3.x && p1.y == p3.y)
+            return !rectDetect.textured || (p0.s == p1.s && p0.t == p2.t && p2.s == p3.s && p1.t == p3.t);
+        if (p0.x == p2.x && p0.y == p1.y && p1.x == p3.x && p2.y == p3.y)
+            return !rectDetect.textured || (p0.s == p2.s && p0.t == p1.t && p1.s == p3.s && p2.t == p3.t);
+        return false;
+    }
+
+    // A fresh, unculled fan of exactly four vertices that forms an axis-aligned rectangle is drawn
+    // as one too (the reference's DetectRectangleFromFan): the same flatness conditions, the four
+    // corners found as top-left/bottom-right and the other two, matching texture coordinates along
+    // the edges, and texture not mirrored against the screen (s and t grow to the bottom-right).
+    bool fanQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
+        int itl = 0, ibr = 0;
+        if (!quadIsFlat(q, itl, ibr)) return false;
+        const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
+        int itr = 1, ibl = 1;
+        for (int i = 0; i < 4; ++i) {
+            if (i == itl || i == ibr) continue;
+            if (d[i]->sv.x <= d[itl]->sv.x && d[i]->sv.y >= d[itl]->sv.y) ibl = i;
+            if (d[i]->sv.x >= d[ibr]->sv.x && d[i]->sv.y <= d[ibr]->sv.y) itr = i;
+        }
+        if (itl + itr + ibl + ibr != 6) return false;  // each corner found once
+        const ScreenVertex &ptl = d[itl]->sv, &ptr = d[itr]->sv, &pbl = d[ibl]->sv, &pbr = d[ibr]->sv;
+        if (ptl.x != pbl.x || ptr.x != pbr.x || ptl.y != ptr.y || pbl.y != pbr.y) return false;
+        tl = q[itl], br = q[ibr];
+        if (!rectDetect.textured) return true;
+        if (ptl.s != pbl.s || ptr.s != pbr.s || ptl.t != ptr.t || pbl.t != pbr.t) return false;
+        return ptl.t < pbr.t && ptl.y < pbr.y && ptl.s < pbr.s && ptl.x < pbr.x;
+    }
+
+    // The flatness conditions shared by the strip and fan detection (see stripQuadAsRect), and the
+    // top-left / bottom-right corners (indices 0–3 into q).
+    bool quadIsFlat(const u32 q[4], int& itl, int& ibr) const {
+        const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
         for (const ClipVertex* c : d)
             if (!c->valid) return false;
         const bool through = ts->through;
@@ -448,7 +488,7 @@ struct SoftRenderer::Impl {
             return true;
         };
         if (!compatible(*d[0])) return false;
-        int itl = 0, ibr = 0;
+        itl = 0, ibr = 0;
         for (int i = 1; i < 4; ++i) {
             const ScreenVertex &a = d[0]->sv, &b = d[i]->sv;
             if (std::memcmp(a.color, b.color, 4) != 0) return false;
@@ -469,15 +509,7 @@ struct SoftRenderer::Impl {
             if (b.x <= d[itl]->sv.x && b.y <= d[itl]->sv.y) itl = i;
             if (b.x >= d[ibr]->sv.x && b.y >= d[ibr]->sv.y) ibr = i;
         }
-        tl = q[itl], br = q[ibr];
-        const ScreenVertex &p0 = d[0]->sv, &p1 = d[1]->sv, &p2 = d[2]->sv, &p3 = d[3]->sv;
-        // Through-mode texture coordinates are compared in texels as given; s and t here are
-        // scaled by the same level-0 size for every vertex, so equality is unchanged.
-        if (p0.x == p1.x && p0.y == p2.y && p2.x == p3.x && p1.y == p3.y)
-            return !rectDetect.textured || (p0.s == p1.s && p0.t == p2.t && p2.s == p3.s && p1.t == p3.t);
-        if (p0.x == p2.x && p0.y == p1.y && p1.x == p3.x && p2.y == p3.y)
-            return !rectDetect.textured || (p0.s == p2.s && p0.t == p1.t && p1.s == p3.s && p2.t == p3.t);
-        return false;
+        return true;
     }
 
     // Assembles `seq` (indices into cverts, in draw order) as `prim`; what does not complete a
@@ -533,6 +565,15 @@ struct SoftRenderer::Impl {
             break;
         }
         case GE_PRIM_TRIANGLE_FAN:
+            if (rectDetect.allowed && !cullOn && n == 4) {
+                u32 tl = 0, br = 0;
+                const u32 quad[4] = {seq[0], seq[1], seq[2], seq[3]};
+                if (fanQuadAsRect(quad, tl, br)) {
+                    rectangle(tl, br);
+                    if (keepPending) keep = {seq[0], seq[3]};
+                    break;
+                }
+            }
             // The reference's ring for fans: the centre in slot 0, odd-numbered vertices in slot 1,
             // even-numbered ones in slot 2 (see the strip case).
             for (size_t i = 2; i < n; ++i) {

@@ -286,10 +286,26 @@ TEST(SoftRaster, RectangleCoverageAnyVertexOrder) {
         rasterRectangle(fullScreen(), c[k], c[3 - k], Band{}, col.sink);
         EXPECT_EQ(col.pixels(), expect) << k;
     }
-    // Fractional corners: centres in [1.5, 4.5) × [1, 3): the centre 1.5 is in, 4.5 is out.
+    // Fractional corners: a near edge on a pixel centre includes that pixel (1.5 → column 1). A far
+    // edge on a centre includes the pixel only when it is the second of a pair counted from the
+    // first drawn pixel (the reference renderer's 2×2 quads): 4.5 is column 4, the second of the
+    // pair (3, 4), so it is drawn; 3.5 would be column 3, the first of a pair, so it is not.
     Collector frac;
     rasterRectangle(fullScreen(), px(1.5f, 1), px(4.5f, 3), Band{}, frac.sink);
-    EXPECT_EQ(frac.pixels(), expect);
+    std::set<std::pair<int, int>> expectFrac = expect;
+    for (int y = 1; y <= 2; ++y) expectFrac.insert({4, y});
+    EXPECT_EQ(frac.pixels(), expectFrac);
+    Collector even;
+    rasterRectangle(fullScreen(), px(1.5f, 1), px(3.5f, 3), Band{}, even.sink);
+    std::set<std::pair<int, int>> expectEven;
+    for (int y = 1; y <= 2; ++y)
+        for (int x = 1; x <= 2; ++x) expectEven.insert({x, y});
+    EXPECT_EQ(even.pixels(), expectEven);
+    // The same in Y: rows from 1 (edge at 1.5) to the edge at 3.5 (row 3 = second of the pair 2, 3).
+    Collector rows;
+    rasterRectangle(fullScreen(), px(1, 0.5f), px(2, 3.5f), Band{}, rows.sink);
+    const std::set<std::pair<int, int>> expectRows = {{1, 0}, {1, 1}, {1, 2}, {1, 3}};
+    EXPECT_EQ(rows.pixels(), expectRows);
     // Zero width draws nothing.
     Collector zero;
     rasterRectangle(fullScreen(), px(2, 1), px(2, 5), Band{}, zero.sink);

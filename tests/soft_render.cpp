@@ -283,6 +283,39 @@ TEST(SoftRender, StripQuadDrawnAsRectangle) {
     EXPECT_GT(blended & 0xFF, 0u);           // with a little red
 }
 
+TEST(SoftRender, FanQuadDrawnAsRectangle) {
+    // Same idea for a fresh 4-vertex fan TL, TR, BR, BL (the reference's DetectRectangleFromFan):
+    // drawn as a rectangle it samples pixel centres, so the first green column is pure green.
+    auto build = [](Scene& s, u32 cornerColor) {
+        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
+        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+        s.b.enable(GE_CMD_TME, true);
+        s.b.texMode(GE_TFMT_8888, 0, false);
+        s.b.setTexture(0, kFb2, 64, 64, 64);
+        s.b.texFunc(3, true);
+        s.b.texFilter(1, 1);
+        constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        auto corner = [&](float x, float y, u32 c) {
+            BuildVertex v = tv(100 + x, 100 + y, c);
+            v.u = x, v.v = y;
+            return v;
+        };
+        BuildVertex v[4] = {corner(0, 0, 0xFFFFFFFF), corner(64, 0, 0xFFFFFFFF), corner(64, 64, 0xFFFFFFFF),
+                            corner(0, 64, cornerColor)};
+        auto bytes = packVertices(vtype, v, 4);
+        s.b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 4, nullptr, bytes.data());
+    };
+    Scene rect, tris;
+    build(rect, 0xFFFFFFFF);
+    build(tris, 0xFEFFFFFF);  // a different vertex colour: drawn as two triangles
+    auto a = rect.run(1), b = tris.run(1);
+    EXPECT_EQ(Scene::pixel(a, kFb, 131, 130), 0x0000FFu);
+    EXPECT_EQ(Scene::pixel(a, kFb, 132, 130), 0x00FF00u);
+    EXPECT_NE(Scene::pixel(b, kFb, 132, 130), 0x00FF00u);
+}
+
 TEST(SoftRender, OutputIdenticalForAnyThreadCount) {
     // Many overlapping blended, Gouraud-shaded triangles, rectangles and lines, transformed and
     // through mode: the VRAM bytes must not depend on the number of rasterising threads.
