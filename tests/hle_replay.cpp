@@ -89,30 +89,6 @@ TEST(Replay, UnknownRecordTypeIsAnError) {
     EXPECT_NE(err.find("unknown record type"), std::string::npos);
 }
 
-// Mutates a dump at random: REGISTERS words (including flow-control opcodes with wild
-// arguments), record types, sizes and pointers, and payload bytes.
-void mutate(dump::Dump& d, std::mt19937& rng, int edits) {
-    std::uniform_int_distribution<u32> any;
-    for (int e = 0; e < edits && !d.records.empty(); ++e) {
-        dump::Record& r = d.records[any(rng) % d.records.size()];
-        switch (any(rng) % 6) {
-        case 0: r.type = u8(any(rng) % 0x20); break;
-        case 1: r.size = any(rng) % 3 ? any(rng) % 0x10000 : any(rng); break;
-        case 2: r.ptr = any(rng) % (u32(d.pushbuf.size()) + 64); break;
-        default: {
-            if (d.pushbuf.empty()) break;
-            static const u8 ops[] = {0x08, 0x09, 0x0A, 0x0B, 0x0C, 0x0E, 0x0F, 0x10, 0x13, 0x14, 0x04, 0x05,
-                                     0x06, 0x07, 0xC4, 0xEA, 0x01, 0x02, 0x12, 0xF7};
-            size_t at = any(rng) % d.pushbuf.size() & ~size_t(3);
-            if (at + 4 > d.pushbuf.size()) break;
-            u32 w = (u32(ops[any(rng) % sizeof ops]) << 24) | (any(rng) & 0xFFFFFF);
-            writeLE32(&d.pushbuf[at], w);
-            break;
-        }
-        }
-    }
-}
-
 TEST(Replay, CorruptedDumpsNeverCrashOrHang) {
     auto files = frametestDumps();
     if (files.empty()) GTEST_SKIP() << "frametests not found";
@@ -124,7 +100,7 @@ TEST(Replay, CorruptedDumpsNeverCrashOrHang) {
         ASSERT_TRUE(dump::loadDump(f, orig, err)) << err;
         for (int variant = 0; variant < 3; ++variant) {
             dump::Dump d = orig;
-            mutate(d, rng, 40);
+            mutateDump(d, rng, 40);
             Memory mem;
             NullRenderer r;
             GeEngine eng(mem, &r);
