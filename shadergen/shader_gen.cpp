@@ -91,9 +91,6 @@ void header(std::string& s, const HostCaps& caps, const FsKey* fk, const std::st
 // ---- exact interpolation (HostCaps::exactInterp, layout in shader_gen.h `tri`) ----
 std::string recTexel(int texel) { return "v_rec[" + std::to_string(texel) + "]"; }
 // Double / int64 number i of the record as a GLSL expression.
-std::string recD(int i) {
-    return "packDouble2x32(" + recTexel(tri::kDoubles + i / 2) + ((i & 1) ? ".zw)" : ".xy)");
-}
 std::string recI(int i) {
     return "packInt2x32(ivec2(" + recTexel(tri::kInts + i / 2) + ((i & 1) ? ".zw))" : ".xy))");
 }
@@ -200,13 +197,36 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
             // Slope mode: clip W screen-linear at the quad's top-left pixel.
             s += "    g_wclip = finiteOr0(interpF(recF(" + recTexel(tri::kClipW) + "), a, wsumRecip()));\n";
         }
+        s += "  } else if ((h.x & 15u) == " + std::to_string(tri::kKindRect) + "u) {\n"
+             // rasterRectangle: the row value advanced once per pair of rows, then once per pair of
+             // columns, each a separately rounded float addition; the odd pixel of a pair adds half
+             // a step (and the odd row of a pair half a row step) to the pair's value.
+             "    uvec4 a = " + recTexel(tri::kRectStart) + ", b = " + recTexel(tri::kRectRow) + ";\n"
+             "    ivec2 d = pix - ivec2(" + recTexel(tri::kRectBox) + ".xy);\n"
+             "    vec2 stx = uintBitsToFloat(a.zw), sty = uintBitsToFloat(b.xy);\n"
+             "    precise vec2 p = uintBitsToFloat(a.xy);\n"
+             "    for (int i = 0; i < (d.y >> 1); ++i) p = p + sty;\n"
+             "    for (int i = 0; i < (d.x >> 1); ++i) p = p + stx;\n"
+             "    precise vec2 hx = 0.5 * stx;\n"
+             "    precise vec2 hy = 0.5 * sty;\n"
+             "    precise vec2 p10 = p + hx;\n"
+             "    precise vec2 p01 = p + hy;\n"
+             "    precise vec2 p11 = p + (hx + hy);\n"
+             "    vec2 st = (d.y & 1) == 0 ? ((d.x & 1) == 0 ? p : p10) : ((d.x & 1) == 0 ? p01 : p11);\n"
+             "    g_st = vec2(finiteOr0(st.x), finiteOr0(st.y));\n";
+        if (k.texLodMode == 0) {
+            // lodFromSteps on the quad's half steps: max(|Δs·w0|, |Δt·h0|) (float products of
+            // floats round the same as the software model's double ones).
+            s += "    precise float ds = p10.x - p.x;\n"
+                 "    precise float dt = p01.y - p.y;\n"
+                 "    precise float ma = abs(ds * uintBitsToFloat(b.z));\n"
+                 "    precise float mb = abs(dt * uintBitsToFloat(b.w));\n"
+                 "    uint bits = floatBitsToUint(ma < mb ? mb : ma);\n"
+                 "    g_lod = float(int((bits >> 15) & 0xFFFFu) - 127 * 256) / 256.0;\n";
+        }
         s += "  } else {\n"
-             // Rectangles and fragments: s = sBase + fx·sDx + fy·sDy in double (rasterRectangle).
-             "    precise double fx = double(16 * pix.x + 8 - int(" + recD(tri::kDX0) + ")) * " + recD(tri::kDInvW) + ";\n"
-             "    precise double fy = double(16 * pix.y + 8 - int(" + recD(tri::kDY0) + ")) * " + recD(tri::kDInvH) + ";\n"
-             "    precise double s = " + recD(tri::kDSBase) + " + fx * " + recD(tri::kDSDx) + " + fy * " + recD(tri::kDSDy) + ";\n"
-             "    precise double t = " + recD(tri::kDTBase) + " + fx * " + recD(tri::kDTDx) + " + fy * " + recD(tri::kDTDy) + ";\n"
-             "    g_st = vec2(finiteOr0(float(s)), finiteOr0(float(t)));\n"
+             // Fragments: the software rasteriser's finished values.
+             "    g_st = uintBitsToFloat(" + recTexel(tri::kRectStart) + ".xy);\n"
              "  }\n"
              "}\n";
     }
@@ -330,10 +350,16 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
         // the sample point half a texel and keeps a 4-bit fraction (ref §8.10).
         // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
+        // Linear rounds to nearest, ties to even, instead (sampler.cpp texelFixedRound).
         s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n"
+             "int fixr(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(roundEven(p)) : int(0x80000000u); }\n"
              "ivec2 fixCoord(int lv, vec2 st) {\n"
              "  vec2 p = st * (vec2(u_texLevels[lv].yz) * 256.0);\n"
              "  return ivec2(fixc(p.x), fixc(p.y));\n"
+             "}\n"
+             "ivec2 fixCoordRound(int lv, vec2 st) {\n"
+             "  vec2 p = st * (vec2(u_texLevels[lv].yz) * 256.0);\n"
+             "  return ivec2(fixr(p.x), fixr(p.y));\n"
              "}\n"
              "ivec4 sampleNearest(int lv, vec2 st) {\n"
              "  ivec2 p = fixCoord(lv, st) >> 8;\n"
@@ -341,7 +367,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "}\n"
              // p − 128 split so it cannot overflow: integer part and 4-bit fraction.
              "ivec4 sampleLinear(int lv, vec2 st) {\n"
-             "  ivec2 q = fixCoord(lv, st);\n"
+             "  ivec2 q = fixCoordRound(lv, st);\n"
              "  ivec2 lo = q & 255;\n"
              "  ivec2 i0 = (q >> 8) - ivec2(lessThan(lo, ivec2(128)));\n"
              "  ivec2 f = ((lo - 128) & 255) >> 4;\n"

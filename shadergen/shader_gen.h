@@ -67,14 +67,18 @@ inline constexpr int kQ = 6;          // xyz: q of o[i]
 inline constexpr int kRecipW = 7;     // xyz: 1/w of o[i] (1 in through mode)
 inline constexpr int kClipW = 8;      // xyz: w of o[i]
 inline constexpr int kInts = 9;       // 12 int64 (2 per texel, low word first), see kI*
-// Rectangles and fragments reuse texels kS… as 10 doubles (2 per texel, low word first):
-// s = sBase + fx·sDx + fy·sDy with fx = (16x + 8 − x0)·invW, fy likewise (rasterRectangle).
-inline constexpr int kDoubles = 4;
-inline constexpr int kDSBase = 0, kDSDx = 1, kDSDy = 2, kDTBase = 3, kDTDx = 4, kDTDy = 5, kDX0 = 6, kDY0 = 7,
-                     kDInvW = 8, kDInvH = 9;
+// Rectangles (rasterRectangle): texture coordinates as running single-precision sums from the
+// first covered pixel (kRectBox.xy), one column-pair step per two columns added along the row to
+// the row value, one row-pair step per two rows; the odd pixel of a pair adds half a step.
+inline constexpr int kRectStart = 4;  // xy: s, t at the first pixel (float); zw: s, t step per column pair
+inline constexpr int kRectRow = 5;    // xy: s, t step per row pair; zw: level-0 width, height (float)
+inline constexpr int kRectBox = 6;    // covered pixels x1, y1, x2, y2 (int, inclusive)
+// Fragments (lines, points: finished by the software rasteriser): s, t in kRectStart.xy, level of
+// detail in the header.
 // Kinds (header.x & 15) and flags.
 inline constexpr u32 kKindTriangle = 0;
-inline constexpr u32 kKindLinear = 1;             // rectangle or constant fragment: no edges
+inline constexpr u32 kKindLinear = 1;             // constant fragment (lines, points): no edges
+inline constexpr u32 kKindRect = 2;               // rectangle: constant colour, Z, fog; stepped s, t
 inline constexpr u32 kFlagFogVaries = 1u << 4;    // fog interpolated (else header.y)
 inline constexpr u32 kFlagColorVaries = 1u << 5;  // primary colour interpolated (else o[0]'s slot)
 inline constexpr u32 kFlagSecVaries = 1u << 6;    // secondary colour interpolated (else o[0]'s slot)
@@ -85,7 +89,6 @@ inline constexpr int kEdgeThresholdShift = 9;      // bits 9–11: edge i needs 
 // E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). Depth plane (base, kx, ky).
 inline constexpr int kIA = 0, kIB = 3, kIC = 6, kIZ = 9;
 static_assert(kIZ + 3 <= 2 * (kTexels - kInts));
-static_assert(kDoubles + 5 <= kInts);  // 10 doubles, 2 per texel
 }  // namespace tri
 
 // Return false and set err for keys the generator cannot express (e.g. framebuffer fetch

@@ -11,6 +11,7 @@
 
 #include "hle/spline.h"
 #include "hle/vertex_decoder.h"
+#include "softmodel/assembly.h"
 #include "softmodel/clip.h"
 #include "softmodel/pixel.h"
 #include "softmodel/raster.h"
@@ -430,85 +431,13 @@ struct SoftRenderer::Impl {
         addPrim(PrimKind::Triangle, tr, br, bl, bl);
     }
 
-    // PPSSPP's software renderer, which made the reference renders, draws four strip vertices that
-    // form an axis-aligned rectangle with matching texture coordinates as a RECTANGLES primitive
-    // (TransformUnit's DetectRectangleFromStrip; it samples sprites at pixel centres, triangles a
-    // sixteenth of a pixel earlier, raster.cpp kTriSample). The reference's conditions: same primary
-    // colour; same Z unless depth is neither tested nor written; in transform mode also the same
-    // secondary colour, no vertex outside the screen range, W ≥ 0 and Z ≥ −W, W within 1/512 and
-    // equal Q when texturing, fog within half a step when fogging. `tl`/`br` get the top-left and
-    // bottom-right vertices (the rectangle's v0 and v1).
-    bool stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
+    // Strip/fan quads drawn as rectangles (softmodel/assembly.h, shared with the GL translator):
+    // `tl`/`br` get the top-left and bottom-right vertices (the rectangle's v0 and v1).
+    bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
         const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
         int itl = 0, ibr = 0;
-        if (!quadIsFlat(q, itl, ibr)) return false;
+        if (!(fan ? fanQuadAsRect(rectDetect, d, itl, ibr) : stripQuadAsRect(rectDetect, d, itl, ibr))) return false;
         tl = q[itl], br = q[ibr];
-        const ScreenVertex &p0 = d[0]->sv, &p1 = d[1]->sv, &p2 = d[2]->sv, &p3 = d[3]->sv;
-        // Through-mode texture coordinates are compared in texels as given; s and t here are
-        // scaled by the same level-0 size for every vertex, so equality is unchanged.
-        if (p0.x == p1.x && p0.y == p2.y && p2.x == p3.x && p1.y == p3.y)
-            return !rectDetect.textured || (p0.s == p1.s && p0.t == p2.t && p2.s == p3.s && p1.t == p3.t);
-        if (p0.x == p2.x && p0.y == p1.y && p1.x == p3.x && p2.y == p3.y)
-            return !rectDetect.textured || (p0.s == p2.s && p0.t == p1.t && p1.s == p3.s && p2.t == p3.t);
-        return false;
-    }
-
-    // A fresh, unculled fan of exactly four vertices that forms an axis-aligned rectangle is drawn
-    // as one too (the reference's DetectRectangleFromFan): the same flatness conditions, the four
-    // corners found as top-left/bottom-right and the other two, matching texture coordinates along
-    // the edges, and texture not mirrored against the screen (s and t grow to the bottom-right).
-    bool fanQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
-        int itl = 0, ibr = 0;
-        if (!quadIsFlat(q, itl, ibr)) return false;
-        const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
-        int itr = 1, ibl = 1;
-        for (int i = 0; i < 4; ++i) {
-            if (i == itl || i == ibr) continue;
-            if (d[i]->sv.x <= d[itl]->sv.x && d[i]->sv.y >= d[itl]->sv.y) ibl = i;
-            if (d[i]->sv.x >= d[ibr]->sv.x && d[i]->sv.y <= d[ibr]->sv.y) itr = i;
-        }
-        if (itl + itr + ibl + ibr != 6) return false;  // each corner found once
-        const ScreenVertex &ptl = d[itl]->sv, &ptr = d[itr]->sv, &pbl = d[ibl]->sv, &pbr = d[ibr]->sv;
-        if (ptl.x != pbl.x || ptr.x != pbr.x || ptl.y != ptr.y || pbl.y != pbr.y) return false;
-        tl = q[itl], br = q[ibr];
-        if (!rectDetect.textured) return true;
-        if (ptl.s != pbl.s || ptr.s != pbr.s || ptl.t != ptr.t || pbl.t != pbr.t) return false;
-        return ptl.t < pbr.t && ptl.y < pbr.y && ptl.s < pbr.s && ptl.x < pbr.x;
-    }
-
-    // The flatness conditions shared by the strip and fan detection (see stripQuadAsRect), and the
-    // top-left / bottom-right corners (indices 0–3 into q).
-    bool quadIsFlat(const u32 q[4], int& itl, int& ibr) const {
-        const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
-        for (const ClipVertex* c : d)
-            if (!c->valid) return false;
-        const bool through = ts->through;
-        auto compatible = [&](const ClipVertex& c) {
-            if (!through && (c.outside || c.clip[3] < 0.0f || c.clip[2] < -c.clip[3])) return false;
-            return true;
-        };
-        if (!compatible(*d[0])) return false;
-        itl = 0, ibr = 0;
-        for (int i = 1; i < 4; ++i) {
-            const ScreenVertex &a = d[0]->sv, &b = d[i]->sv;
-            if (std::memcmp(a.color, b.color, 4) != 0) return false;
-            if (a.z != b.z && rectDetect.depthMatters) return false;
-            if (!through) {
-                if (std::memcmp(a.secondary, b.secondary, 3) != 0 || !compatible(*d[i])) return false;
-                if (rectDetect.textured && d[i]->clip[3] != d[0]->clip[3]) {
-                    constexpr float halfTexel = 0.5f / 512.0f;
-                    if (d[i]->clip[3] - halfTexel > d[0]->clip[3] || d[i]->clip[3] + halfTexel < d[0]->clip[3])
-                        return false;
-                }
-                if (rectDetect.textured && b.q != a.q) return false;
-                if (rectDetect.fog && b.fog != a.fog) {
-                    constexpr float halfStep = 0.5f / 255.0f;
-                    if (b.fog - halfStep > a.fog || b.fog + halfStep < a.fog) return false;
-                }
-            }
-            if (b.x <= d[itl]->sv.x && b.y <= d[itl]->sv.y) itl = i;
-            if (b.x >= d[ibr]->sv.x && b.y >= d[ibr]->sv.y) ibr = i;
-        }
         return true;
     }
 
@@ -535,14 +464,14 @@ struct SoftRenderer::Impl {
             break;
         case GE_PRIM_TRIANGLE_STRIP: {
             // A fresh, unculled strip of an even number of vertices is first read as quads of
-            // four, each drawn as a rectangle while it is one (stripQuadAsRect); from the first
+            // four, each drawn as a rectangle while it is one (assembly.h stripQuadAsRect); from the first
             // quad that is not, the rest is an ordinary strip.
             size_t start = 0;
             if (rectDetect.allowed && !cullOn && !stripOdd && n >= 4 && (n & 1) == 0) {
                 for (size_t base = 0; base + 2 < n; base += 2) {
                     const u32 quad[4] = {seq[base], seq[base + 1], seq[base + 2], seq[base + 3]};
                     u32 tl = 0, br = 0;
-                    if (!stripQuadAsRect(quad, tl, br)) break;
+                    if (!quadAsRect(false, quad, tl, br)) break;
                     rectangle(tl, br);
                     start = base + 2;
                     if (base + 4 >= n) start = n;
@@ -568,7 +497,7 @@ struct SoftRenderer::Impl {
             if (rectDetect.allowed && !cullOn && n == 4) {
                 u32 tl = 0, br = 0;
                 const u32 quad[4] = {seq[0], seq[1], seq[2], seq[3]};
-                if (fanQuadAsRect(quad, tl, br)) {
+                if (quadAsRect(true, quad, tl, br)) {
                     rectangle(tl, br);
                     if (keepPending) keep = {seq[0], seq[3]};
                     break;
@@ -680,12 +609,9 @@ struct SoftRenderer::Impl {
     // PRIM type 7 continuation: the transformed vertices still open, and the strip parity.
     std::vector<ClipVertex> pending;
     bool stripOdd = false;
-    // Strip-as-rectangle detection (see stripQuadAsRect) for the PRIM being assembled: allowed only
-    // for a fresh PRIM (no open vertices), with what the comparison needs from the state.
-    struct RectDetect {
-        bool allowed = false;
-        bool depthMatters = false, textured = false, fog = false;
-    } rectDetect;
+    // Strip/fan-as-rectangle detection (assembly.h) for the PRIM being assembled: allowed only for
+    // a fresh PRIM (no open vertices), with what the comparison needs from the state.
+    RectDetect rectDetect;
 };
 
 SoftRenderer::SoftRenderer(Memory& mem, const SoftOptions& opt) : impl_(std::make_unique<Impl>(mem, opt)) {}
@@ -721,11 +647,7 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
     const bool textured = st.TME_on();
     const RasterParams rp = makeRasterParams(st, ts.through, textured);
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    I.rectDetect.allowed = I.pending.empty();
-    I.rectDetect.textured = textured && !st.isClearMode();
-    I.rectDetect.fog = st.FGE_on() && !ts.through && !st.isClearMode();
-    I.rectDetect.depthMatters = st.isClearMode() ? st.CMODE_depth()
-                                                 : st.ZTE_on() && (st.ZTEST_func() != 1 || !st.ZMSK_nowrite());
+    I.rectDetect = RectDetect::fromState(st, ts.through, textured, I.pending.empty());
     I.assemble(p.prim, full, true);
     I.rectDetect.allowed = false;
     I.queueDraw(st, rp, textured, false);

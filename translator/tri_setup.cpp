@@ -1,7 +1,7 @@
 // Per-triangle records for exact interpolation (see tri_setup.h). Every number mirrors
 // softmodel/raster.cpp: rasterTriangle's oriented edges and sample offset, attribute order,
-// constant-attribute shortcuts, depth plane and weight reciprocal; rasterRectangle's orientation
-// table and linear s, t.
+// constant-attribute shortcuts, depth plane and weight reciprocal; rasterRectangle's covered
+// box, orientation table and single-precision steps.
 #include "translator/tri_setup.h"
 
 #include <algorithm>
@@ -19,12 +19,6 @@ void putF32(TriRecord& r, int texel, int comp, float v) {
     u32 b;
     std::memcpy(&b, &v, 4);
     putU32(r, texel, comp, b);
-}
-void putD(TriRecord& r, int i, double v) {
-    u64 b;
-    std::memcpy(&b, &v, 8);
-    const int k = T::kDoubles * 4 + 2 * i;
-    r.w[k] = u32(b), r.w[k + 1] = u32(b >> 32);
 }
 void putI(TriRecord& r, int i, s64 v) {
     const u64 b = u64(v);
@@ -128,45 +122,77 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
     putU32(r, T::kHeader, 0, flags);
 }
 
-void packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
-                   TriRecord& r) {
+namespace {
+s64 floorDiv16(s64 a) { return a >= 0 ? a / 16 : -((15 - a) / 16); }
+s64 ceilDiv16(s64 a) { return -floorDiv16(-a); }
+}  // namespace
+
+bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
+                   TriRecord& r, int box[4]) {
     std::memset(&r, 0, sizeof r);
-    putU32(r, T::kHeader, 0, T::kKindLinear);
+    putU32(r, T::kHeader, 0, T::kKindRect);
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    // Texture orientation by where v0 lies relative to v1 (§8.2), as rasterRectangle.
-    float sBase = 0, sDx = 0, sDy = 0, tBase = 0, tDx = 0, tDy = 0;
-    const bool left = v0.x < v1.x, above = v0.y < v1.y;
-    if (left && above) {
-        sBase = v0.s, sDx = v1.s - v0.s, tBase = v0.t, tDy = v1.t - v0.t;
-    } else if (left) {
-        sBase = v1.s, sDy = v0.s - v1.s, tBase = v0.t, tDx = v1.t - v0.t;
-    } else if (above) {
-        sBase = v0.s, sDy = v1.s - v0.s, tBase = v1.t, tDx = v0.t - v1.t;
-    } else {
-        sBase = v1.s, sDx = v0.s - v1.s, tBase = v1.t, tDy = v0.t - v1.t;
-    }
-    const double invW = xr > xl ? 1.0 / double(xr - xl) : 0.0, invH = yb > yt ? 1.0 / double(yb - yt) : 0.0;
-    float lod = 0.0f;
-    if (rp.textured && rp.needLod) lod = soft::lodFromTexSteps(rp, 16.0 * sDx * invW, 16.0 * tDy * invH);
+    if (xl == xr || yt == yb) return false;  // zero width or height draws nothing (§8.11)
+    // Covered pixels as rasterRectangle: from the first centre at or after the near edge; towards
+    // the far edge centres strictly inside, plus a centre exactly on the edge when it is the odd
+    // pixel of a pair counted from the first one (the reference's 2×2 quad walk); then clipped.
+    const int px1 = std::max(int(ceilDiv16(s64(xl) - 8)), rp.clipX1);
+    const int py1 = std::max(int(ceilDiv16(s64(yt) - 8)), rp.clipY1);
+    auto lastCovered = [](int first, int far, int clip) {
+        int last = int(ceilDiv16(s64(far) - 8)) - 1;
+        if (((far - 8) & 15) == 0 && ((last + 1 - first) & 1) == 1) ++last;
+        return std::min(last, clip);
+    };
+    const int px2 = lastCovered(px1, xr, rp.clipX2), py2 = lastCovered(py1, yb, rp.clipY2);
+    if (px1 > px2 || py1 > py2) return false;
+    box[0] = px1, box[1] = py1, box[2] = px2, box[3] = py2;
+    putU32(r, T::kRectBox, 0, u32(px1)), putU32(r, T::kRectBox, 1, u32(py1));
+    putU32(r, T::kRectBox, 2, u32(px2)), putU32(r, T::kRectBox, 3, u32(py2));
+
+    // Texture coordinates as rasterRectangle steps them in single precision (§8.2 orientation):
+    // the change per two pixels, 2·Δ / size, and the start moved from the box corner to the
+    // first pixel centre. The shader repeats the running sums (shader_gen.cpp exactTexInputs).
+    float rowS = 0, rowT = 0, stxS = 0, stxT = 0, styS = 0, styT = 0;
     if (rp.textured) {
-        putD(r, T::kDSBase, sBase), putD(r, T::kDSDx, sDx), putD(r, T::kDSDy, sDy);
-        putD(r, T::kDTBase, tBase), putD(r, T::kDTDx, tDx), putD(r, T::kDTDy, tDy);
+        const float diffX = float(xr - xl) / 16.0f, diffY = float(yb - yt) / 16.0f;
+        const float diffS = v1.s - v0.s, diffT = v1.t - v0.t;
+        const bool left = v0.x < v1.x, above = v0.y < v1.y;
+        if (left && above) {
+            rowS = v0.s, rowT = v0.t;
+            stxS = 2.0f * diffS / diffX, styT = 2.0f * diffT / diffY;
+        } else if (left) {
+            rowS = v1.s, rowT = v0.t;
+            stxT = 2.0f * diffT / diffX, styS = 2.0f * -diffS / diffY;
+        } else if (above) {
+            rowS = v0.s, rowT = v1.t;
+            stxT = 2.0f * -diffT / diffX, styS = 2.0f * diffS / diffY;
+        } else {
+            rowS = v1.s, rowT = v1.t;
+            stxS = 2.0f * -diffS / diffX, styT = 2.0f * -diffT / diffY;
+        }
+        const float offX = float(16 * px1 + 8 - xl), offY = float(16 * py1 + 8 - yt);
+        rowS = rowS + (stxS / 32.0f) * offX;
+        rowT = rowT + (stxT / 32.0f) * offX;
+        rowS = rowS + (styS / 32.0f) * offY;
+        rowT = rowT + (styT / 32.0f) * offY;
     }
-    putD(r, T::kDX0, double(xl)), putD(r, T::kDY0, double(yt));
-    putD(r, T::kDInvW, invW), putD(r, T::kDInvH, invH);
+    putF32(r, T::kRectStart, 0, rowS), putF32(r, T::kRectStart, 1, rowT);
+    putF32(r, T::kRectStart, 2, stxS), putF32(r, T::kRectStart, 3, stxT);
+    putF32(r, T::kRectRow, 0, styS), putF32(r, T::kRectRow, 1, styT);
+    putF32(r, T::kRectRow, 2, rp.texW0), putF32(r, T::kRectRow, 3, rp.texH0);
     putU32(r, T::kHeader, 1, rp.fog ? soft::fogToByte(v1.fog) : 255u);
-    putF32(r, T::kHeader, 2, lod);
+    putF32(r, T::kHeader, 2, 0.0f);
     putF32(r, T::kHeader, 3, rp.needW ? v1.w : 1.0f);
     putConstAttributes(r, u16(v1.z), v1.color, v1.secondary);
+    return true;
 }
 
 void packFragment(const soft::Fragment& f, TriRecord& r) {
     std::memset(&r, 0, sizeof r);
     putU32(r, T::kHeader, 0, T::kKindLinear);
-    // s = sBase + fx·0 + fy·0 = f.s exactly (fx, fy finite).
-    putD(r, T::kDSBase, f.s);
-    putD(r, T::kDTBase, f.t);
+    putF32(r, T::kRectStart, 0, f.s);
+    putF32(r, T::kRectStart, 1, f.t);
     putU32(r, T::kHeader, 1, f.fog);
     putF32(r, T::kHeader, 2, f.lod);
     putF32(r, T::kHeader, 3, f.w);

@@ -26,8 +26,10 @@ struct TriRecord {
 void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, const soft::ScreenVertex& in1,
                   const soft::ScreenVertex& in2, const soft::ScreenVertex& prov, TriRecord& out);
 // Rectangle from two corners, as soft::rasterRectangle sees it (both GL triangles get this record).
-void packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
-                   TriRecord& out);
+// False when it covers no pixel; else `box` gets the covered pixels, inclusive (x1, y1, x2, y2):
+// the GL quad must cover exactly those.
+bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
+                   TriRecord& out, int box[4]);
 // One finished fragment (lines and points come from the software rasteriser as fragments).
 void packFragment(const soft::Fragment& f, TriRecord& out);
 

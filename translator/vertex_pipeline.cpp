@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "hle/spline.h"
+#include "softmodel/assembly.h"
 #include "softmodel/clip.h"
 
 namespace ge::gl {
@@ -198,17 +199,24 @@ void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVe
         return toGl(c, false);
     };
     GlVertex tl = corner(0, 0), tr = corner(1, 0), bl = corner(0, 1), br = corner(1, 1);
+    if (vs_.records) {
+        // Exact interpolation: the record decides the covered pixels (rasterRectangle's far-edge
+        // pair rule and clipping) and the shader the texture coordinates; the quad covers
+        // exactly that pixel box.
+        TriRecord rec;
+        int box[4];
+        if (!packRectangle(rasterParams(), v0, v1, rec, box)) return;
+        tl.x = bl.x = float(box[0]), tr.x = br.x = float(box[2] + 1);
+        tl.y = tr.y = float(box[1]), bl.y = br.y = float(box[3] + 1);
+        out_->records.push_back(rec);
+        out_->records.push_back(rec);
+    }
     GlVertex q[6] = {tl, tr, bl, tr, br, bl};
     out_->tris.insert(out_->tris.end(), q, q + 6);
     PrimBounds bb = boundsOf(q, 6);
     out_->triBounds.push_back(bb);
     bb.joinPrev = 1;
     out_->triBounds.push_back(bb);
-    if (vs_.records) {
-        out_->records.emplace_back();
-        packRectangle(rasterParams(), v0, v1, out_->records.back());
-        out_->records.push_back(out_->records.back());
-    }
 }
 
 void VertexPipeline::sinkFlush(void* ctx, const soft::Fragment* f, size_t n) {
@@ -311,46 +319,14 @@ void VertexPipeline::rectangleAsTriangles(const soft::ScreenVertex& v0, const so
     emitTriangle(tr, br, bl, bl, 1);
 }
 
-bool VertexPipeline::stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const {
-    // Mirrors soft_renderer.cpp stripQuadAsRect (the reference renderer's
-    // DetectRectangleFromStrip): four strip vertices forming an axis-aligned rectangle with
-    // matching attributes are drawn as a RECTANGLES primitive.
+bool VertexPipeline::quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
+    // The software model's rule (softmodel/assembly.h, shared).
     const soft::ClipVertex* d[4] = {&cverts_[q[0]], &cverts_[q[1]], &cverts_[q[2]], &cverts_[q[3]]};
-    for (const soft::ClipVertex* c : d)
-        if (!c->valid) return false;
-    const bool through = ts_.through;
-    auto compatible = [&](const soft::ClipVertex& c) {
-        return through || !(c.outside || c.clip[3] < 0.0f || c.clip[2] < -c.clip[3]);
-    };
-    if (!compatible(*d[0])) return false;
     int itl = 0, ibr = 0;
-    for (int i = 1; i < 4; ++i) {
-        const soft::ScreenVertex &a = d[0]->sv, &b = d[i]->sv;
-        if (std::memcmp(a.color, b.color, 4) != 0) return false;
-        if (a.z != b.z && rectDetect_.depthMatters) return false;
-        if (!through) {
-            if (std::memcmp(a.secondary, b.secondary, 3) != 0 || !compatible(*d[i])) return false;
-            if (rectDetect_.textured && d[i]->clip[3] != d[0]->clip[3]) {
-                constexpr float halfTexel = 0.5f / 512.0f;
-                if (d[i]->clip[3] - halfTexel > d[0]->clip[3] || d[i]->clip[3] + halfTexel < d[0]->clip[3])
-                    return false;
-            }
-            if (rectDetect_.textured && b.q != a.q) return false;
-            if (rectDetect_.fog && b.fog != a.fog) {
-                constexpr float halfStep = 0.5f / 255.0f;
-                if (b.fog - halfStep > a.fog || b.fog + halfStep < a.fog) return false;
-            }
-        }
-        if (b.x <= d[itl]->sv.x && b.y <= d[itl]->sv.y) itl = i;
-        if (b.x >= d[ibr]->sv.x && b.y >= d[ibr]->sv.y) ibr = i;
-    }
+    if (!(fan ? soft::fanQuadAsRect(rectDetect_, d, itl, ibr) : soft::stripQuadAsRect(rectDetect_, d, itl, ibr)))
+        return false;
     tl = q[itl], br = q[ibr];
-    const soft::ScreenVertex &p0 = d[0]->sv, &p1 = d[1]->sv, &p2 = d[2]->sv, &p3 = d[3]->sv;
-    if (p0.x == p1.x && p0.y == p2.y && p2.x == p3.x && p1.y == p3.y)
-        return !rectDetect_.textured || (p0.s == p1.s && p0.t == p2.t && p2.s == p3.s && p1.t == p3.t);
-    if (p0.x == p2.x && p0.y == p1.y && p1.x == p3.x && p2.y == p3.y)
-        return !rectDetect_.textured || (p0.s == p2.s && p0.t == p1.t && p1.s == p3.s && p2.t == p3.t);
-    return false;
+    return true;
 }
 
 void VertexPipeline::line(u32 ia, u32 ib) {
@@ -395,13 +371,13 @@ void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool
             break;
         case GE_PRIM_TRIANGLE_STRIP: {
             // As the software model: a fresh, unculled strip of an even number of vertices is
-            // first read as quads, each drawn as a rectangle while it is one (stripQuadAsRect).
+            // first read as quads, each drawn as a rectangle while it is one (soft::stripQuadAsRect).
             size_t start = 0;
             if (rectDetect_.allowed && !vs_.cull && !stripOdd_ && n >= 4 && (n & 1) == 0) {
                 for (size_t base = 0; base + 2 < n; base += 2) {
                     const u32 quad[4] = {seq[base], seq[base + 1], seq[base + 2], seq[base + 3]};
                     u32 tl = 0, br = 0;
-                    if (!stripQuadAsRect(quad, tl, br)) break;
+                    if (!quadAsRect(false, quad, tl, br)) break;
                     rectangle(tl, br);
                     start = base + 2;
                     if (base + 4 >= n) start = n;
@@ -421,6 +397,16 @@ void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool
             break;
         }
         case GE_PRIM_TRIANGLE_FAN:
+            // As the software model: a fresh, unculled fan of four vertices may be a rectangle.
+            if (rectDetect_.allowed && !vs_.cull && n == 4) {
+                const u32 quad[4] = {seq[0], seq[1], seq[2], seq[3]};
+                u32 tl = 0, br = 0;
+                if (quadAsRect(true, quad, tl, br)) {
+                    rectangle(tl, br);
+                    keep = {seq[0], seq[3]};
+                    break;
+                }
+            }
             // Ring order of fans: centre in slot 0, odd vertices in slot 1, even ones in slot 2.
             for (size_t i = 2; i < n; ++i) {
                 const u32 ring[3] = {seq[0], (i & 1) ? seq[i] : seq[i - 1], (i & 1) ? seq[i - 1] : seq[i]};
@@ -491,11 +477,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
             }
         }
     }
-    rectDetect_.allowed = pending_.empty();
-    rectDetect_.textured = st.TME_on() && !st.isClearMode();
-    rectDetect_.fog = st.FGE_on() && !ts_.through && !st.isClearMode();
-    rectDetect_.depthMatters =
-        st.isClearMode() ? st.CMODE_depth() : st.ZTE_on() && (st.ZTEST_func() != 1 || !st.ZMSK_nowrite());
+    rectDetect_ = soft::RectDetect::fromState(st, ts_.through, st.TME_on(), pending_.empty());
     assemble(p.prim, seq_, true);
     rectDetect_.allowed = false;
     return true;

@@ -19,6 +19,7 @@
 #include "hle/memory.h"
 #include "hle/renderer.h"
 #include "hle/vertex_decoder.h"
+#include "softmodel/assembly.h"
 #include "softmodel/raster.h"
 #include "softmodel/transform.h"
 #include "translator/tri_setup.h"
@@ -89,7 +90,7 @@ private:
                       const soft::ScreenVertex& prov, int joinPrev);
     void emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
     void rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
-    bool stripQuadAsRect(const u32 q[4], u32& tl, u32& br) const;
+    bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const;
     void emitFragments(const soft::Fragment* f, size_t n);
     bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
     soft::RasterParams rasterParams() const;
@@ -109,12 +110,9 @@ private:
     GePrimType pendingPrim_ = GE_PRIM_POINTS;
     bool stripOdd_ = false;
     std::vector<soft::Fragment> fragBuf_;
-    // Strip-as-rectangle detection, as the software model (soft_renderer.cpp stripQuadAsRect):
+    // Strip/fan-as-rectangle detection, shared with the software model (softmodel/assembly.h):
     // allowed only for a fresh PRIM, with what the comparison needs from the state.
-    struct RectDetect {
-        bool allowed = false;
-        bool depthMatters = false, textured = false, fog = false;
-    } rectDetect_;
+    soft::RectDetect rectDetect_;
 };
 
 }  // namespace ge::gl
