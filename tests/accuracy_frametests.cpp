@@ -58,7 +58,7 @@ void runAccuracy(const std::string& backend, const Floors& floors) {
     EXPECT_LE(median, floors.maxMedian);
 }
 
-TEST(FrametestAccuracy, SoftwareModel) { runAccuracy("soft", Floors{7, 18, 0.30}); }
-TEST(FrametestAccuracy, GlTranslator) { runAccuracy("gl", Floors{7, 18, 0.30}); }
+TEST(FrametestAccuracy, SoftwareModel) { runAccuracy("soft", Floors{10, 18, 0.10}); }
+TEST(FrametestAccuracy, GlTranslator) { runAccuracy("gl", Floors{10, 18, 0.10}); }
 
 }  // namespace

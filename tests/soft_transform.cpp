@@ -89,6 +89,25 @@ TEST(SoftTransform, ViewportRoundingAndOffset) {
     EXPECT_EQ(v.sv.z, 40960);
 }
 
+TEST(SoftTransform, OffscreenVertexTruncatesTowardZeroAfterOffset) {
+    Rig r;
+    // The offset comes off before the truncating conversion (reference: int(x·16 + 0.375 − OFF)).
+    // OFFX16 = OFFY16 = 1608: Xs·16 + 0.375 = 1601 → 1601 − 1608 = −7 exactly;
+    // Ys·16 = 1600.48 → 1600.855 − 1608 = −7.145 → trunc −7 (flooring first would give −8).
+    r.set(GE_CMD_OFFSETX, 1608);
+    r.set(GE_CMD_OFFSETY, 1608);
+    ClipVertex v = r.run(at(100.0390625f, 100.03f, 0.5f));
+    EXPECT_EQ(v.sv.x, -7);
+    EXPECT_EQ(v.sv.y, -7);
+    // Xs·16 = 1600.5 → 1600.875 − 1608 = −7.125 → −7 (not −8).
+    v = r.run(at(100.03125f, 100.03f, 0.5f));
+    EXPECT_EQ(v.sv.x, -7);
+    // On-screen vertices are unaffected: 1600.875 − 1592 = 8.875 → 8.
+    r.set(GE_CMD_OFFSETX, 1592);
+    v = r.run(at(100.03125f, 100.03f, 0.5f));
+    EXPECT_EQ(v.sv.x, 8);
+}
+
 TEST(SoftTransform, WorldViewProjectionChain) {
     Rig r;
     // World: translate (1, 2, 3); view: scale 2; projection: w = −z (a perspective divide).
