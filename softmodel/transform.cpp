@@ -39,7 +39,7 @@ inline float geTerm(float a, float b) {
 void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
     // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; §3.4)
     for (int r = 0; r < 3; ++r)
-        out[r] = geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1]) + geTerm(m[6 + r], p[2]) + m[9 + r];
+        out[r] = (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
@@ -49,7 +49,7 @@ void mulDir3x4(const float m[12], const float d[3], float out[3]) {
 void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
     // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
     for (int r = 0; r < 4; ++r)
-        out[r] = geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1]) + geTerm(m[8 + r], p[2]) + m[12 + r];
+        out[r] = (geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1])) + (geTerm(m[8 + r], p[2]) + m[12 + r]);
 }
 
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal) {
@@ -70,6 +70,32 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     ts.tx = st.TX_value(), ts.ty = st.TY_value(), ts.tz = st.TZ_value();
     ts.offX16 = int(st.OFFSETX_value());
     ts.offY16 = int(st.OFFSETY_value());
+
+    // PPSSPP's software renderer (TransformUnit ComputeTransformState, POS_TO_CLIP) multiplies the
+    // 4×4 forms of world, view and projection once per draw when neither the world nor the view
+    // position is needed, and transforms positions with that product: its float rounding differs
+    // from three chained products (Pursuit Force UCES 0.0125 → 0.0062, Monster Hunter slightly).
+    ts.combinedClip = !st.FGE_on() && !st.LTE_on();
+    if (ts.combinedClip) {
+        float w4[16], v4[16], wv[16];
+        auto to4x4 = [](const float* m, float* o) {
+            for (int c = 0; c < 4; ++c) {
+                for (int r = 0; r < 3; ++r) o[c * 4 + r] = m[c * 3 + r];
+                o[c * 4 + 3] = c == 3 ? 1.0f : 0.0f;
+            }
+        };
+        // o = a·b, each element summed left to right.
+        auto mul4 = [](const float* a, const float* b, float* o) {
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j)
+                    o[i * 4 + j] = ((a[i * 4] * b[j] + a[i * 4 + 1] * b[4 + j]) + a[i * 4 + 2] * b[8 + j]) +
+                                   a[i * 4 + 3] * b[12 + j];
+        };
+        to4x4(ts.world, w4);
+        to4x4(ts.view, v4);
+        mul4(w4, v4, wv);
+        mul4(wv, ts.proj, ts.worldViewProj);
+    }
 
     const u32 map = st.TMAP_mode();
     ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (§3.8)
@@ -107,9 +133,11 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
 
 void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     const float w = v.clip[3];
-    float xs = ts.sx * (v.clip[0] / w) + ts.tx;
-    float ys = ts.sy * (v.clip[1] / w) + ts.ty;
-    float zs = ts.sz * (v.clip[2] / w) + ts.tz;
+    // Scale first, then divide by w, then add the centre: the reference renderer's order (PPSSPP
+    // TransformUnit: clippos·screenScale / w + screenAdd); float rounding differs from x/w·scale.
+    float xs = v.clip[0] * ts.sx / w + ts.tx;
+    float ys = v.clip[1] * ts.sy / w + ts.ty;
+    float zs = v.clip[2] * ts.sz / w + ts.tz;
     bool outside = false, zClamped = false;
     if (ts.clipEnable) {
         // CLE = 1: Z is clamped, and a clamped vertex is exempt from the X/Y range check (§8.5;
@@ -178,7 +206,8 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     float world[3], viewPos[3];
     mulPoint3x4(ts.world, model, world);
     mulPoint3x4(ts.view, world, viewPos);
-    mulPoint4x4(ts.proj, viewPos, out.clip);
+    if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
+    else mulPoint4x4(ts.proj, viewPos, out.clip);
 
     // Fog factor per vertex from view-space Z (§3.9).
     if (!ts.fog) sv.fog = 1.0f;

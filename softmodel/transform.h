@@ -42,6 +42,10 @@ struct TransformState {
     bool normalReverse = false;  // CMD_NREV
     bool hasNormal = false, hasColor = false;
     float shadeLight[2][3] = {};  // normalised positions of the TSHADE lights (S, T)
+    // Without fog and lighting the reference renderer folds world·view·proj into one 4×4 matrix
+    // (row-vector layout, element [row·4 + col]) and transforms positions with it in one step.
+    bool combinedClip = false;
+    float worldViewProj[16] = {};
 };
 
 // `vtype` is the draw's CMD_VTYPE word; `hasColor`/`hasNormal` whether its format carries them

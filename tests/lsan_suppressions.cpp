@@ -1,6 +1,7 @@
-// LeakSanitizer suppressions for test_gl: Mesa's OSMesa/llvmpipe/EGL keep a few process-lifetime
+// LeakSanitizer suppressions for the test binaries: Mesa's OSMesa/llvmpipe/EGL keep a few process-lifetime
 // allocations (driver screens, LLVM state) that are never freed; they are not ge2gl leaks.
-// Only compiled into test_gl; the hook is looked up by the sanitizer runtime when it is present.
+// Compiled into every test binary (GL backends appear in test_gl, test_api and the tools tests);
+// the hook is looked up by the sanitizer runtime when it is present.
 extern "C" const char* __lsan_default_suppressions() {
     return "leak:libOSMesa\n"
            "leak:libLLVM\n"
