@@ -1,12 +1,23 @@
 // Near-plane clipping and the discard rules (see clip.h).
 #include "softmodel/clip.h"
 
+#include <algorithm>
+#include <cstdint>
+
 namespace ge::soft {
 
 namespace {
 
 // Signed distance to the near plane z = −w (≥ 0 inside).
 inline float nearDist(const ClipVertex& v) { return v.clip[2] + v.clip[3]; }
+
+// Screen X/Y of a clip-space vertex outside [0, 4096), computed as projectToScreen does.
+inline bool xyOutside(const TransformState& ts, const ClipVertex& v) {
+    const float w = v.clip[3];
+    const float xs = v.clip[0] * ts.sx / w + ts.tx;
+    const float ys = v.clip[1] * ts.sy / w + ts.ty;
+    return !(xs >= 0.0f && xs < 4096.0f && ys >= 0.0f && ys < 4096.0f);
+}
 
 }  // namespace
 
@@ -56,15 +67,71 @@ int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVe
     // Sutherland–Hodgman against one plane: a triangle gives at most a quadrilateral.
     const ClipVertex* in[3] = {&a, &b, &c};
     int n = 0;
+    int tag[4] = {};  // 0–2: input vertex; 3 + i: the point on edge (i, i + 1)
     for (int i = 0; i < 3; ++i) {
         const ClipVertex& p = *in[i];
         const ClipVertex& q = *in[(i + 1) % 3];
         const float dp = nearDist(p), dq = nearDist(q);
         const bool pin = dp >= 0.0f, qin = dq >= 0.0f;
-        if (pin) out[n++] = p;
-        if (pin != qin && n < 4) lerpVertex(ts, p, q, dp / (dp - dq), out[n++]);
+        if (pin) tag[n] = i, out[n++] = p;
+        // The new vertex is always interpolated from the outside vertex toward the inside one,
+        // t = d_out / (d_out − d_in), as PPSSPP's clipper does (Clipper.cpp CLIP_POLY): the float
+        // rounding of the lerp depends on the direction.
+        if (pin != qin && n < 4) {
+            if (pin) lerpVertex(ts, q, p, dq / (dq - dp), out[n]);
+            else lerpVertex(ts, p, q, dp / (dp - dq), out[n]);
+            // A new vertex whose screen X or Y is outside [0, 4096) drops every fan triangle that
+            // uses it (PPSSPP Clipper.cpp clip_interpolate marks it, ProcessTriangle skips those
+            // sub-triangles). Unlike input vertices, no Z-clamp exemption applies and Z is not
+            // checked: with the exemption Nova gets worse (3.35 → 3.61), without it better (2.55);
+            // checking Z as well drops whole clipped surfaces (Nova 431).
+            out[n].outside = xyOutside(ts, out[n]);
+            tag[n] = 3 + i;
+            ++n;
+        }
     }
-    return n >= 3 ? n : 0;
+    if (n < 3) return 0;
+    // PPSSPP's rasteriser draws only triangles of one winding (BinManager::AddTriangle keeps
+    // cross ≥ 0) and its transform unit submits (c, b, a) as well when that is the drawn order.
+    // The new vertices do not depend on the order (interpolated from the outside vertex), but the
+    // polygon then starts at a different vertex, so its fan – and which fan triangles the range
+    // rule drops – differ. Rotate our polygon (keeping our winding) to start where the reversed
+    // clip would start.
+    int64_t area2 = 0;
+    for (int k = 0; k < n; ++k) {
+        const ScreenVertex& p = out[k].sv;
+        const ScreenVertex& q = out[(k + 1) % n].sv;
+        area2 += int64_t(p.x) * q.y - int64_t(q.x) * p.y;
+    }
+    if (area2 < 0) {
+        int first = -1;
+        const int rev[3] = {2, 1, 0};
+        for (int i = 0; i < 3 && first < 0; ++i) {
+            const int pi = rev[i], qi = rev[(i + 1) % 3];
+            if (nearDist(*in[pi]) >= 0.0f) first = pi;
+            else if (nearDist(*in[qi]) >= 0.0f) first = 3 + std::min(pi, qi) + (std::max(pi, qi) - std::min(pi, qi) == 2 ? 2 : 0);
+        }
+        int at = 0;
+        while (at < n && tag[at] != first) ++at;
+        if (at > 0 && at < n) {
+            ClipVertex tmp[4];
+            for (int k = 0; k < n; ++k) tmp[k] = out[(at + k) % n];
+            for (int k = 0; k < n; ++k) out[k] = tmp[k];
+        }
+    }
+    // The caller fans the polygon from out[0]: (0, 1, 2) and, for a quadrilateral, (0, 2, 3).
+    // Keep exactly the fan triangles without an outside vertex, in the same vertex order.
+    const bool keep1 = !out[0].outside && !out[1].outside && !out[2].outside;
+    if (n == 3) return keep1 ? 3 : 0;
+    const bool keep2 = !out[0].outside && !out[2].outside && !out[3].outside;
+    if (keep1 && keep2) return 4;
+    if (keep1) return 3;
+    if (keep2) {
+        out[1] = out[2];
+        out[2] = out[3];
+        return 3;
+    }
+    return 0;
 }
 
 bool clipLineNear(const TransformState& ts, ClipVertex& a, ClipVertex& b) {

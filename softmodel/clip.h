@@ -26,7 +26,11 @@ bool discardPrimitive(const TransformState& ts, const ClipVertex* const* v, int 
 void lerpVertex(const TransformState& ts, const ClipVertex& a, const ClipVertex& b, float t, ClipVertex& out);
 
 // Clips triangle (a, b, c) against the near plane z ≥ −w. Writes the remaining convex polygon
-// in the same winding to `out` and returns its vertex count (0, 3 or 4).
+// in the same winding to `out` and returns its vertex count (0, 3 or 4); the caller draws it as a
+// fan from out[0]. As upstream PPSSPP's clipper: new vertices are interpolated from the outside
+// vertex toward the inside one; a new vertex landing outside the [0, 4096) screen range drops the
+// fan triangles that use it (the polygon is shortened accordingly); and when the clipped polygon
+// winds negatively on screen it is rotated to start where clipping (c, b, a) would start.
 int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
                      ClipVertex out[4]);
 // Clips a line to z ≥ −w in place; false when nothing is left.

@@ -72,11 +72,22 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     ts.offY16 = int(st.OFFSETY_value());
 
     // PPSSPP's software renderer (TransformUnit ComputeTransformState, POS_TO_CLIP) multiplies the
-    // 4×4 forms of world, view and projection once per draw when neither the world nor the view
-    // position is needed, and transforms positions with that product: its float rounding differs
-    // from three chained products (Pursuit Force UCES 0.0125 → 0.0062, Monster Hunter slightly).
-    ts.combinedClip = !st.FGE_on() && !st.LTE_on();
-    if (ts.combinedClip) {
+    // 4×4 forms of world, view and projection once per draw and transforms positions with that
+    // product: its float rounding differs from three chained products (Pursuit Force UCES
+    // 0.0125 → 0.0062, Monster Hunter slightly). Fog does not change this (its depth is computed
+    // separately: Monster Hunter 0.325 → 0.320, Frontier Gate 0.0136 → 0.0111, Pursuit Force
+    // UCUS 2.748 → 2.744), nor does lighting when every enabled light is directional (lighting then
+    // needs only the world normal). A positional or spot light needs the world position, so the
+    // position goes model → world and then through view·proj folded into one matrix
+    // (WORLD_TO_CLIP; GachiTora 0.876 → 0.874).
+    bool needWorldPos = false;
+    if (st.LTE_on()) {
+        for (int n = 0; n < 4; ++n)
+            if (st.LE_on(n) && st.LTYPE_type(n) != 0) needWorldPos = true;
+    }
+    ts.combinedClip = !needWorldPos;
+    ts.worldToClip = needWorldPos;
+    {
         float w4[16], v4[16], wv[16];
         auto to4x4 = [](const float* m, float* o) {
             for (int c = 0; c < 4; ++c) {
@@ -95,6 +106,7 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
         to4x4(ts.view, v4);
         mul4(w4, v4, wv);
         mul4(wv, ts.proj, ts.worldViewProj);
+        mul4(v4, ts.proj, ts.viewProj);
     }
 
     const u32 map = st.TMAP_mode();
@@ -207,6 +219,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     mulPoint3x4(ts.world, model, world);
     mulPoint3x4(ts.view, world, viewPos);
     if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
+    else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
     else mulPoint4x4(ts.proj, viewPos, out.clip);
 
     // Fog factor per vertex from view-space Z (§3.9).

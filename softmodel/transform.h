@@ -46,6 +46,10 @@ struct TransformState {
     // (row-vector layout, element [row·4 + col]) and transforms positions with it in one step.
     bool combinedClip = false;
     float worldViewProj[16] = {};
+    // With lighting that needs the world position (a non-directional light), the reference
+    // renderer transforms to world space and then applies view·proj folded into one 4×4 matrix.
+    bool worldToClip = false;
+    float viewProj[16] = {};
 };
 
 // `vtype` is the draw's CMD_VTYPE word; `hasColor`/`hasNormal` whether its format carries them

@@ -125,6 +125,36 @@ TEST(SoftTransform, WorldViewProjectionChain) {
     EXPECT_EQ(v.sv.z, 16384);             // 16384·(−1) + 32768
 }
 
+TEST(SoftTransform, MatrixModeFollowsLightTypes) {
+    // PPSSPP SWR (ComputeTransformState): one folded world·view·proj matrix unless an enabled
+    // light needs the world position (point/spot); then model → world, and view·proj folded.
+    Rig r;
+    r.st.world[9] = 1, r.st.world[10] = 2, r.st.world[11] = 3;
+    r.st.view[0] = r.st.view[4] = r.st.view[8] = 2;
+    for (float& e : r.st.proj) e = 0;
+    r.st.proj[0] = r.st.proj[5] = r.st.proj[10] = 1;
+    r.st.proj[11] = -1;
+    auto mode = [&](TransformState ts) { return ts.combinedClip ? 1 : ts.worldToClip ? 2 : 0; };
+    EXPECT_EQ(mode(makeTransformState(r.st, 0x180, false, true)), 1);
+    r.set(GE_CMD_FGE, 1);  // fog alone keeps the folded matrix
+    EXPECT_EQ(mode(makeTransformState(r.st, 0x180, false, true)), 1);
+    r.set(GE_CMD_FGE, 0);
+    r.set(GE_CMD_LTE, 1);
+    r.set(GE_CMD_LTYPE0, 1 << 8);  // point light, but disabled
+    EXPECT_EQ(mode(makeTransformState(r.st, 0x180, false, true)), 1);
+    r.set(GE_CMD_LE0, 1);
+    const TransformState ts = makeTransformState(r.st, 0x180, false, true);
+    EXPECT_EQ(mode(ts), 2);
+    // view·proj = diag(2, 2, 2, 1)·P: elements 0, 5, 10 = 2, element 11 = −2, element 15 = 0.
+    EXPECT_EQ(ts.viewProj[0], 2); EXPECT_EQ(ts.viewProj[5], 2); EXPECT_EQ(ts.viewProj[10], 2);
+    EXPECT_EQ(ts.viewProj[11], -2); EXPECT_EQ(ts.viewProj[15], 0); EXPECT_EQ(ts.viewProj[14], 0);
+    // model (1, 1, −7) → world (2, 3, −4) → clip (4, 6, −8, 8), as in the chained form.
+    ClipVertex v = r.run(at(1, 1, -7), 0x180, true);
+    EXPECT_EQ(v.clip[0], 4); EXPECT_EQ(v.clip[1], 6); EXPECT_EQ(v.clip[2], -8); EXPECT_EQ(v.clip[3], 8);
+    r.set(GE_CMD_LTYPE0, 0);  // directional: the world position is not needed
+    EXPECT_EQ(mode(makeTransformState(r.st, 0x180, false, true)), 1);
+}
+
 TEST(SoftTransform, ThroughModeTexelsAndPositions) {
     Rig r;
     r.set(GE_CMD_OFFSETX, 1000);  // ignored in through mode
@@ -311,8 +341,9 @@ TEST(SoftClip, TriangleCrossingNearPlane) {
     r.set(GE_CMD_CLE, 1);
     TransformState ts = makeTransformState(r.st, 0x180, false, false);
     ClipVertex a, b, c;
-    auto setc = [](ClipVertex& v, float x, float y, float z, float w, u8 red) {
+    auto setc = [&](ClipVertex& v, float x, float y, float z, float w, u8 red) {
         v.clip[0] = x, v.clip[1] = y, v.clip[2] = z, v.clip[3] = w;
+        projectToScreen(ts, v, false);  // screen positions give the polygon's winding
         v.sv.color[0] = red;
         v.sv.s = x;
     };
@@ -345,4 +376,61 @@ TEST(SoftClip, TriangleCrossingNearPlane) {
     EXPECT_EQ(lb.clip[0], 1);
     ClipVertex lc = a, ld = b2;
     EXPECT_FALSE(clipLineNear(ts, lc, ld));
+}
+
+TEST(SoftClip, ClippedVertexOffScreenDropsItsFanTriangles) {
+    // PPSSPP Clipper.cpp: a new (clipped) vertex whose screen X/Y is outside [0, 4096) drops the
+    // fan triangles using it; Z is clamped by CLE but gives no exemption for new vertices.
+    Rig r;
+    r.set(GE_CMD_CLE, 1);
+    r.setf(GE_CMD_SX, 10), r.setf(GE_CMD_TX, 2048), r.setf(GE_CMD_SY, 10), r.setf(GE_CMD_TY, 2048);
+    TransformState ts = makeTransformState(r.st, 0x180, false, false);
+    auto setc = [&](ClipVertex& v, float x, float y, float z, float w) {
+        v.clip[0] = x, v.clip[1] = y, v.clip[2] = z, v.clip[3] = w;
+        projectToScreen(ts, v, true);
+    };
+    ClipVertex a, b, c, out[4];
+    setc(a, 0, 0, -2, 1);  // beyond the near plane, distance −1
+    setc(b, 1, 0, 0, 1);   // inside, distance 1; screen x = 2058
+    setc(c, 0, 1, 0, 1);   // inside; screen y = 2058
+    // Polygon (ab, b, c, ca), ab = (0.5, 0, −1, 1) → x 2053, ca → y 2053: all on screen.
+    ASSERT_EQ(clipTriangleNear(ts, a, b, c, out), 4);
+    EXPECT_FALSE(out[0].outside);
+    EXPECT_FALSE(out[3].outside);
+    // Move a far left: ab = (−499.5, 0, −1, 1) → screen x 2048 − 4995 < 0: outside. Both fan
+    // triangles (ab, b, c), (ab, c, ca) use it: nothing is drawn.
+    setc(a, -1000, 0, -2, 1);
+    EXPECT_EQ(clipTriangleNear(ts, a, b, c, out), 0);
+    // Only ca outside: a = (−400, 0) at distance −4, b = (100, 0) at 1 → ab at t = 0.8 = (0, 0);
+    // c = (0, 1) at distance 100 → ca at t = 4/104 ≈ (−384.6, 0.04) → x < 0. (ab, b, c) remains.
+    setc(a, -400, 0, -5, 1);
+    setc(b, 100, 0, 0, 1);
+    setc(c, 0, 1, 99, 1);
+    ASSERT_EQ(clipTriangleNear(ts, a, b, c, out), 3);
+    EXPECT_FLOAT_EQ(out[0].clip[0], 0.0f);
+    EXPECT_EQ(out[1].clip[0], 100);
+    EXPECT_EQ(out[2].clip[1], 1);
+}
+
+TEST(SoftClip, IntersectionInterpolatedFromOutsideVertex) {
+    // The new vertex is a_out + (a_in − a_out)·t with t = d_out / (d_out − d_in), whichever edge
+    // direction the polygon walks (PPSSPP Clipper.cpp). Distances −1 and 2: t = 1/3. Colour weight
+    // int(t·256) = 85: (0·171 + 255·85) / 256 = 84 from the outside vertex; walking from the inside
+    // one would give int(2/3·256) = 170 → (255·86 + 0·170) / 256 = 85.
+    Rig r;
+    r.set(GE_CMD_CLE, 1);
+    TransformState ts = makeTransformState(r.st, 0x180, false, false);
+    ClipVertex a, b, c, out[4];
+    auto setc = [&](ClipVertex& v, float x, float y, float z, float w, u8 red) {
+        v.clip[0] = x, v.clip[1] = y, v.clip[2] = z, v.clip[3] = w;
+        projectToScreen(ts, v, true);
+        v.sv.color[0] = red;
+    };
+    setc(a, 0, 0, 1, 1, 255);   // inside, distance 2
+    setc(b, 1, 0, -2, 1, 0);    // beyond, distance −1
+    setc(c, 0, 1, 1, 1, 255);
+    const int n = clipTriangleNear(ts, a, b, c, out);
+    ASSERT_EQ(n, 4);
+    // (a, a→b, b→c, c): the a→b point comes from b (outside) toward a.
+    EXPECT_EQ(out[1].sv.color[0], 84);
 }
