@@ -146,3 +146,77 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
 }
 
 }  // namespace
+
+namespace {
+
+tools::Image testPattern(int w, int h) {
+    tools::Image img;
+    img.width = w;
+    img.height = h;
+    img.rgba.resize(size_t(w) * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            img.rgba[size_t(y) * w + x] = (u32(x * 7) & 0xFF) | (u32(y * 13) & 0xFF) << 8 | u32((x ^ y) & 0xFF) << 16 |
+                                          u32(255 - ((x + y) & 0x7F)) << 24;
+    return img;
+}
+
+}  // namespace
+
+TEST(ImageIo, PngRoundTripKeepsEveryByteIncludingAlpha) {
+    const fs::path t = tmpDir();
+    const tools::Image img = testPattern(37, 19);
+    std::string err;
+    ASSERT_TRUE(tools::writePng((t / "rt.png").string(), img, err)) << err;
+    tools::Image back;
+    ASSERT_TRUE(tools::readImage((t / "rt.png").string(), back, err)) << err;
+    EXPECT_EQ(back.width, 37);
+    EXPECT_EQ(back.height, 19);
+    EXPECT_EQ(back.rgba, img.rgba);
+}
+
+TEST(ImageIo, OtherFormatsGoThroughTheOpenImageIoModule) {
+    const fs::path t = tmpDir();
+    const tools::Image img = testPattern(16, 9);
+    std::string err;
+    ASSERT_TRUE(tools::writePng((t / "rt.tif").string(), img, err)) << err;
+    tools::Image back;
+    ASSERT_TRUE(tools::readImage((t / "rt.tif").string(), back, err)) << err;
+    EXPECT_EQ(back.rgba, img.rgba);
+    // An extension no format claims is refused with a message, not a crash.
+    EXPECT_FALSE(tools::writePng((t / "rt.notaformat").string(), img, err));
+    EXPECT_FALSE(err.empty());
+}
+
+TEST(ImageIo, DamagedPngsAreRefusedWithAMessage) {
+    const fs::path t = tmpDir();
+    std::string err;
+    ASSERT_TRUE(tools::writePng((t / "ok.png").string(), testPattern(64, 64), err)) << err;
+    std::vector<char> bytes(fs::file_size(t / "ok.png"));
+    {
+        std::ifstream in(t / "ok.png", std::ios::binary);
+        in.read(bytes.data(), std::streamsize(bytes.size()));
+    }
+    // Truncated at several points (the last inside the image data), and with corrupted data. Only
+    // the 12-byte IEND trailer may go missing: the image is complete without it.
+    for (size_t keep : {size_t(0), size_t(8), size_t(30), bytes.size() / 2, bytes.size() - 20}) {
+        {
+            std::ofstream out(t / "bad.png", std::ios::binary | std::ios::trunc);
+            out.write(bytes.data(), std::streamsize(keep));
+        }
+        tools::Image img;
+        err.clear();
+        EXPECT_FALSE(tools::readImage((t / "bad.png").string(), img, err)) << "kept " << keep;
+        EXPECT_FALSE(err.empty());
+    }
+    std::vector<char> corrupt = bytes;
+    for (size_t i = 40; i < corrupt.size(); i += 17) corrupt[i] = char(corrupt[i] ^ 0x5A);
+    {
+        std::ofstream out(t / "bad.png", std::ios::binary | std::ios::trunc);
+        out.write(corrupt.data(), std::streamsize(corrupt.size()));
+    }
+    tools::Image img;
+    EXPECT_FALSE(tools::readImage((t / "bad.png").string(), img, err));
+    EXPECT_FALSE(tools::readImage((t / "missing.png").string(), img, err));
+    EXPECT_NE(err.find("missing.png"), std::string::npos);
+}

@@ -1,13 +1,18 @@
 #include "tools/lib/image.h"
 
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
+#include <png.h>
 
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "hle/pixel_format.h"
 
 namespace ge::tools {
+
+namespace fs = std::filesystem;
 
 Image readFrame(const Memory& mem, u32 addr, u32 stride, u32 format, int width, int height) {
     Image img;
@@ -24,47 +29,135 @@ Image readFrame(const Memory& mem, u32 addr, u32 stride, u32 format, int width, 
     return img;
 }
 
+namespace {
+
+bool hasPngExtension(const std::string& path) {
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".png";
+}
+
+// Other formats go through OpenImageIO in a module loaded on first use (tools/oiio_module): linking
+// OpenImageIO into the CLI costs its ~260 shared libraries at every process start (0.25–0.6 s here),
+// more than rendering a frame.
+struct OiioModule {
+    void* handle = nullptr;
+    int (*read)(const char*, int*, int*, unsigned**, char*, unsigned long) = nullptr;
+    int (*write)(const char*, int, int, const unsigned*, char*, unsigned long) = nullptr;
+    void (*release)(unsigned*) = nullptr;
+};
+
+struct OiioLoad {
+    OiioModule module;
+    std::string error;  // empty when loaded
+};
+
+OiioLoad loadOiio() {
+    OiioLoad load;
+    OiioModule& m = load.module;
+    std::vector<std::string> candidates;
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    if (!ec) candidates.push_back((self.parent_path() / GE2GL_OIIO_MODULE_NAME).string());
+    candidates.push_back((fs::path(GE2GL_OIIO_BUILD_DIR) / GE2GL_OIIO_MODULE_NAME).string());
+    candidates.push_back(GE2GL_OIIO_MODULE_NAME);
+    for (const std::string& c : candidates) {
+        m.handle = dlopen(c.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (m.handle) break;
+    }
+    if (!m.handle) {
+        const char* why = dlerror();
+        load.error = std::string("formats other than PNG need ") + GE2GL_OIIO_MODULE_NAME + " (OpenImageIO): " +
+                     (why ? why : "not found");
+        return load;
+    }
+    m.read = reinterpret_cast<decltype(m.read)>(dlsym(m.handle, "ge2gl_oiio_read"));
+    m.write = reinterpret_cast<decltype(m.write)>(dlsym(m.handle, "ge2gl_oiio_write"));
+    m.release = reinterpret_cast<decltype(m.release)>(dlsym(m.handle, "ge2gl_oiio_free"));
+    if (!m.read || !m.write || !m.release) load.error = std::string(GE2GL_OIIO_MODULE_NAME) + " lacks its entry points";
+    return load;
+}
+
+// Loaded once per process on first use (thread-safe static initialisation), never unloaded: OIIO
+// keeps static state that a dlclose would leave dangling. Immutable afterwards.
+const OiioModule* oiio(std::string& err) {
+    static const OiioLoad load = loadOiio();
+    if (!load.error.empty()) {
+        err = load.error;
+        return nullptr;
+    }
+    return &load.module;
+}
+
+}  // namespace
+
 bool writePng(const std::string& path, const Image& img, std::string& err) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) {
-        err = "cannot write " + path + ": " + OIIO::geterror();
+    if (img.width <= 0 || img.height <= 0 || img.rgba.size() != size_t(img.width) * img.height) {
+        err = "cannot write " + path + ": empty image";
         return false;
     }
-    OIIO::ImageSpec spec(img.width, img.height, 4, OIIO::TypeDesc::UINT8);
-    if (!out->open(path, spec)) {
-        err = "cannot write " + path + ": " + out->geterror();
+    if (!hasPngExtension(path)) {
+        const OiioModule* m = oiio(err);
+        if (!m) return false;
+        char msg[512] = {};
+        if (!m->write(path.c_str(), img.width, img.height, img.rgba.data(), msg, sizeof msg)) {
+            err = "cannot write " + path + ": " + msg;
+            return false;
+        }
+        return true;
+    }
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = u32(img.width);
+    png.height = u32(img.height);
+    png.format = PNG_FORMAT_RGBA;  // bytes R, G, B, A in memory = our little-endian u32 layout
+    if (!png_image_write_to_file(&png, path.c_str(), 0, img.rgba.data(), 0, nullptr)) {
+        err = "cannot write " + path + ": " + png.message;
+        png_image_free(&png);
         return false;
     }
-    bool ok = out->write_image(OIIO::TypeDesc::UINT8, img.rgba.data());
-    if (!ok) err = "cannot write " + path + ": " + out->geterror();
-    out->close();
-    return ok;
+    return true;
 }
 
 bool readImage(const std::string& path, Image& img, std::string& err) {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) {
-        err = "cannot read " + path + ": " + OIIO::geterror();
+    if (!hasPngExtension(path)) {
+        const OiioModule* m = oiio(err);
+        if (!m) return false;
+        char msg[512] = {};
+        int w = 0, h = 0;
+        unsigned* px = nullptr;
+        if (!m->read(path.c_str(), &w, &h, &px, msg, sizeof msg)) {
+            err = "cannot read " + path + ": " + msg;
+            return false;
+        }
+        img.width = w;
+        img.height = h;
+        img.rgba.assign(px, px + size_t(w) * h);
+        m->release(px);
+        return true;
+    }
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_file(&png, path.c_str())) {
+        err = "cannot read " + path + ": " + png.message;
         return false;
     }
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.width <= 0 || spec.height <= 0 || spec.width > 8192 || spec.height > 8192 || spec.nchannels < 1) {
+    if (png.width == 0 || png.height == 0 || png.width > 8192 || png.height > 8192) {
+        png_image_free(&png);
         err = "unsupported image size in " + path;
         return false;
     }
-    std::vector<u8> buf(size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, buf.data())) {
-        err = "cannot decode " + path + ": " + in->geterror();
+    // libpng converts every PNG colour type and depth (grey, palette, 16-bit, with or without
+    // alpha) to 8-bit RGBA; a PNG without alpha reads as opaque.
+    png.format = PNG_FORMAT_RGBA;
+    img.width = int(png.width);
+    img.height = int(png.height);
+    img.rgba.assign(size_t(img.width) * img.height, 0);
+    if (!png_image_finish_read(&png, nullptr, img.rgba.data(), 0, nullptr)) {
+        err = "cannot decode " + path + ": " + png.message;
+        png_image_free(&png);
+        img = Image{};
         return false;
-    }
-    img.width = spec.width;
-    img.height = spec.height;
-    img.rgba.resize(size_t(img.width) * img.height);
-    const int nc = spec.nchannels;
-    for (size_t i = 0; i < img.rgba.size(); ++i) {
-        const u8* p = &buf[i * nc];
-        u8 r = p[0], g = nc >= 3 ? p[1] : p[0], b = nc >= 3 ? p[2] : p[0], a = nc >= 4 ? p[3] : 255;
-        img.rgba[i] = u32(r) | u32(g) << 8 | u32(b) << 16 | u32(a) << 24;
     }
     return true;
 }

@@ -1,4 +1,5 @@
-// Host image I/O and the accuracy measure used by `ge2gl compare` (OpenImageIO for files).
+// Host image I/O and the accuracy measure used by `ge2gl compare` (PNG through libpng; other
+// file formats through OpenImageIO, loaded on first use).
 #pragma once
 #include <string>
 #include <vector>
