@@ -89,6 +89,28 @@ TEST(Replay, UnknownRecordTypeIsAnError) {
     EXPECT_NE(err.find("unknown record type"), std::string::npos);
 }
 
+// PPSSPP's player maps the push buffer in 1 MiB slabs, so the bytes after a texture's recorded
+// size are the dump's next bytes (NFS Carbon reads DXT rows past its recorded size); the player
+// keeps them readable after texture payloads, up to the slab's end.
+TEST(Replay, TexturePayloadsKeepTheFollowingPushBufferBytes) {
+    dump::Dump d;
+    d.pushbuf.assign(2048, 0);  // INIT context: all zero
+    for (u32 i = 0; i < 64; ++i) d.pushbuf.push_back(u8(0x40 + i));
+    d.records.push_back({dump::INIT, 2048, 0});
+    d.records.push_back({dump::TEXTURE0, 16, 2048});  // 16 bytes recorded, 48 more follow
+    const u32 regs = u32(d.pushbuf.size());
+    for (u8 b : {0x00, 0x00, 0x00, 0x00}) d.pushbuf.push_back(b);  // one NOP word
+    d.records.push_back({dump::REGISTERS, 4, regs});
+    Memory mem;
+    GeEngine eng(mem);
+    dump::ReplayResult res;
+    std::string err;
+    ASSERT_TRUE(dump::replayDump(d, eng, {}, res, err)) << err;
+    const u32 tex = eng.state().textureAddr(0);
+    ASSERT_NE(mem.ptr(tex, 64), nullptr) << std::hex << tex;
+    for (u32 i = 0; i < 64; ++i) EXPECT_EQ(mem.read8(tex + i), 0x40 + i) << i;
+}
+
 TEST(Replay, CorruptedDumpsNeverCrashOrHang) {
     auto files = frametestDumps();
     if (files.empty()) GTEST_SKIP() << "frametests not found";

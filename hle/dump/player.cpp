@@ -1,5 +1,6 @@
 #include "hle/dump/player.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <tuple>
@@ -14,6 +15,8 @@ bool isKick(u8 op) { return op == GE_CMD_PRIM || op == GE_CMD_BEZIER || op == GE
 constexpr u32 kListBase = 0x08000000;       // 1 MiB display-list buffer
 constexpr u32 kListEnd = 0x08100000;
 constexpr u32 kArenaBase = kListEnd;        // payloads from here to the end of RAM
+constexpr u32 kSlabSize = 1u << 20;         // PPSSPP's push-buffer mapping granularity
+constexpr u32 kTailMax = 64u << 10;         // bytes after a texture/CLUT payload kept readable
 
 u32 cmd(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
 
@@ -26,8 +29,13 @@ public:
 
 private:
     // Copies a payload into free guest RAM, 4- or 16-byte aligned; identical payloads share one
-    // copy. Returns 0 when it does not fit.
-    u32 place(const Record& r, u32 align);
+    // copy. Returns 0 when it does not fit. With `withTail`, the push-buffer bytes that follow the
+    // payload (to the end of its 1 MiB slab, at most kTailMax) are copied after it: PPSSPP's player
+    // maps whole 1 MiB slabs of the push buffer into guest memory, so a texture read past its
+    // recorded size (a DXT texture whose rows run beyond bufw, NFS Carbon) sees the dump's next
+    // bytes, and the references were rendered that way. A payload that straddles two slabs gets
+    // an exact copy there too, so it gets no tail here.
+    u32 place(const Record& r, u32 align, bool withTail = false);
     void appendWords(const std::vector<u32>& words);
     void runSoFar();
     void hostWrite(u32 addr, const u8* data, u32 size) {
@@ -66,22 +74,30 @@ private:
     bool stopped_ = false;  // --replay-end reached
 };
 
-u32 Replayer::place(const Record& r, u32 align) {
+u32 Replayer::place(const Record& r, u32 align, bool withTail) {
     const u8* p = d_.payload(r);
     if (!p) return 0;
     auto key = std::make_tuple(r.ptr, r.size, align);
     if (auto it = placed_.find(key); it != placed_.end()) return it->second;
+    u32 tail = 0;
+    if (withTail && r.size) {
+        const u64 end = u64(r.ptr) + r.size;  // payload() checked it lies in pushbuf
+        const u64 slabEnd = (u64(r.ptr) / kSlabSize + 1) * kSlabSize;
+        if ((end - 1) / kSlabSize == u64(r.ptr) / kSlabSize)
+            tail = u32(std::min<u64>({slabEnd, u64(d_.pushbuf.size()), end + kTailMax}) - end);
+    }
     const u64 ramEnd = u64(Memory::kRamBase) + t_.ramSize();
     u32 a = (arenaPos_ + align - 1) & ~(align - 1);
-    if (u64(a) + r.size > ramEnd) {
+    if (u64(a) + r.size + tail > ramEnd) {
         // Wrap around: everything placed before has been consumed by the list already run
         // (each REGISTERS block runs at once), except the pending block's own data.
         placed_.clear();
         a = kArenaBase;
         if (u64(a) + r.size > ramEnd) return 0;
+        tail = u32(std::min<u64>(tail, ramEnd - a - r.size));
     }
-    t_.write(a, p, r.size);
-    arenaPos_ = a + r.size;
+    t_.write(a, p, r.size + tail);
+    arenaPos_ = a + r.size + tail;
     placed_[key] = a;
     return a;
 }
@@ -156,7 +172,7 @@ bool Replayer::play(std::string& err) {
         }
         const int texLevel = textureLevelOf(r.type), fbLevel = framebufLevelOf(r.type);
         if (texLevel >= 0) {
-            u32 a = place(r, 16);
+            u32 a = place(r, 16, true);
             if (a && a != lastTex_[texLevel]) {
                 pending_.push_back(cmd(GE_CMD_TBW0 + texLevel, ((a >> 8) & 0xFF0000) | lastBufw_[texLevel]));
                 pending_.push_back(cmd(GE_CMD_TBP0 + texLevel, a & 0xFFFFFF));
@@ -241,7 +257,7 @@ bool Replayer::play(std::string& err) {
                     if (!(clutFlags_ & 1)) hostWrite(clutAddr_, p, r.size);  // same rule as FRAMEBUF
                     clutAddrPending_ = false;
                 } else {
-                    u32 a = place(r, 16);
+                    u32 a = place(r, 16, true);
                     if (a) {
                         pending_.push_back(cmd(GE_CMD_CBW, (a >> 8) & 0xFF0000));
                         pending_.push_back(cmd(GE_CMD_CBP, a & 0xFFFFFF));
