@@ -473,58 +473,79 @@ void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const Scree
 
 void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
                 FragmentSink& sink) {
-    const s64 dx = s64(v1.x) - v0.x, dy = s64(v1.y) - v0.y;
+    // The reference renderer's line walk (PPSSPP GPU/Software DrawLine): max(|dx|, |dy|) / 16
+    // steps of (dx, dy) / steps accumulated in double precision from the start vertex (one
+    // subpixel back along an axis the line runs backwards on), each step drawing the pixel that
+    // contains the truncated position; the end pixel is left out (§8.11). A line shorter than one
+    // pixel backwards is shortened by one subpixel so it does not run into the next pixel.
+    // Positions outside the line's bounding box (rounded out to whole pixels) or the clip
+    // rectangle draw nothing.
+    s64 dx = s64(v1.x) - v0.x, dy = s64(v1.y) - v0.y;
     const s64 steps = std::max(dx < 0 ? -dx : dx, dy < 0 ? -dy : dy) / 16;
     if (steps == 0) return;  // zero-length lines draw nothing (§8.11)
-    // Lines running left/up start one subpixel back so a vertex exactly on a pixel boundary
-    // lands in the pixel the line runs into (PPSSPP's approximate line rule, §8.11).
-    const s64 x0 = v0.x - (dx < 0 ? 1 : 0), y0 = v0.y - (dy < 0 ? 1 : 0);
-    const double r0 = recipW(v0.w), r1 = recipW(v1.w);
-    auto texAt = [&](s64 i, double& s, double& t) {
-        const double a = double(steps - i) * r0, b = double(i) * r1;
-        const double Q = a * v0.q + b * v1.q;
-        s = (a * v0.s + b * v1.s) / Q;
-        t = (a * v0.t + b * v1.t) / Q;
+    if (dx < 0 && dx >= -16) ++dx;
+    if (dy < 0 && dy >= -16) ++dy;
+    const double xinc = double(dx) / double(steps), yinc = double(dy) / double(steps);
+    const double zinc = double(s64(v1.z) - v0.z) / double(steps);
+    const s64 bx1 = std::max<s64>(std::min(v0.x, v1.x) & ~s64(15), s64(rp.clipX1) * 16);
+    const s64 by1 = std::max<s64>(std::min(v0.y, v1.y) & ~s64(15), s64(rp.clipY1) * 16);
+    const s64 bx2 = std::min<s64>(std::max(v0.x, v1.x) | 15, s64(rp.clipX2) * 16 + 15);
+    const s64 by2 = std::min<s64>(std::max(v0.y, v1.y) | 15, s64(rp.clipY2) * 16 + 15);
+    // Gouraud lines interpolate in whole steps, flat lines take the end vertex's colours (§8.1).
+    // (The reference renderer's line code has the flat/Gouraud choice inverted — it interpolates
+    // flat lines and gives Gouraud lines with different end colours the end colour; no frametest
+    // tells the two apart, so the manual's rule stands.)
+    const bool interpolateColor = rp.gouraud;
+    const float q0 = 1.0f / v0.w, q1 = 1.0f / v1.w;
+    // Texture coordinates in single precision, as the reference: perspective-correct with weight
+    // p = a / steps on v0.
+    // Through mode: linear in whole steps; a and b are the step weights of v0 and v1.
+    auto texAt = [&](s64 a, s64 b, float& s, float& t) {
+        if (rp.through) {
+            s = (v0.s * float(a) + v1.s * float(b)) / float(steps);
+            t = (v0.t * float(a) + v1.t * float(b)) / float(steps);
+            return;
+        }
+        const float p = float(a) / float(steps);
+        const float wq0 = p * q0, wq1 = (1.0f - p) * q1;
+        const float qr = 1.0f / (v0.q * wq0 + v1.q * wq1);
+        s = (v0.s * wq0 + v1.s * wq1) * qr;
+        t = (v0.t * wq0 + v1.t * wq1) * qr;
     };
-    // The end pixel (i = steps) is left out (§8.11).
-    for (s64 i = 0; i < steps; ++i) {
-        const s64 xi = x0 + floorDiv(dx * i, steps), yi = y0 + floorDiv(dy * i, steps);
-        const s64 px = floorDiv(xi, 16), py = floorDiv(yi, 16);
-        if (px < rp.clipX1 || px > rp.clipX2 || py < rp.clipY1 || py > rp.clipY2) continue;
-        if (!band.owns(int(py))) continue;
+    double x = v0.x > v1.x ? double(v0.x) - 1 : double(v0.x);
+    double y = v0.y > v1.y ? double(v0.y) - 1 : double(v0.y);
+    double z = double(v0.z);
+    for (s64 i = 0; i < steps; ++i, x += xinc, y += yinc, z += zinc) {
+        if (!(x >= double(bx1) && y >= double(by1) && x <= double(bx2) && y <= double(by2))) continue;
+        const int px = int(x) / 16, py = int(y) / 16;
+        if (!band.owns(py)) continue;
         const s64 a = steps - i, b = i;
         Fragment& f = sink.next();
-        f.x = int(px);
-        f.y = int(py);
-        f.z = u16((v0.z * a + v1.z * b) / steps);
-        if (rp.gouraud) {
+        f.x = px;
+        f.y = py;
+        f.z = u16(int(z));
+        if (interpolateColor) {
             for (int c = 0; c < 4; ++c) f.color[c] = u8((v0.color[c] * a + v1.color[c] * b) / steps);
             for (int c = 0; c < 3; ++c) f.secondary[c] = u8((v0.secondary[c] * a + v1.secondary[c] * b) / steps);
-        } else {  // flat: the end vertex (§8.1)
+        } else {
             std::memcpy(f.color, v1.color, 4);
             std::memcpy(f.secondary, v1.secondary, 3);
         }
-        f.fog = rp.fog ? fogToByte(float((v0.fog * double(a) + v1.fog * double(b)) / double(steps))) : 255;
+        f.fog = rp.fog ? fogToByte((v0.fog * float(a) + v1.fog * float(b)) / float(steps)) : 255;
+        f.s = f.t = 0.0f;
+        f.lod = 0.0f;
         if (rp.textured) {
-            double s, t, sn, tn;
-            texAt(i, s, t);
-            f.s = finiteOr0(float(s));
-            f.t = finiteOr0(float(t));
+            float s, t;
+            texAt(a, b, s, t);
+            f.s = finiteOr0(s);
+            f.t = finiteOr0(t);
             if (rp.needLod) {
-                texAt(i + 1, sn, tn);
-                f.lod = lodFromSteps(rp, sn - s, tn - t);
-            } else {
-                f.lod = 0.0f;
+                float sn, tn;
+                texAt(a - 1, b + 1, sn, tn);
+                f.lod = lodFromSteps(rp, double(sn) - f.s, double(tn) - f.t);
             }
-        } else {
-            f.s = f.t = 0.0f;
-            f.lod = 0.0f;
         }
-        if (rp.needW) {
-            f.w = finiteOr0(float(double(steps) / (double(a) * r0 + double(b) * r1)));
-        } else {
-            f.w = 1.0f;
-        }
+        f.w = rp.needW ? finiteOr0((v0.w * float(a) + v1.w * float(b)) / float(steps)) : 1.0f;
     }
 }
 

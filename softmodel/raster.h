@@ -8,7 +8,8 @@
 //     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1);
 //   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1), plus a far
 //     edge exactly on the centre of the second pixel of a 2×2 quad (the reference's quad walk);
-//   - lines: a DDA stepping max(|dx|, |dy|) pixels, leaving out the end pixel (§8.11);
+//   - lines: the reference renderer's walk of max(|dx|, |dy|) / 16 double-precision steps,
+//     leaving out the end pixel (§8.11);
 //   - points: the one pixel containing the vertex (§4.1).
 // Attributes (§8.1): Z interpolated linearly in screen space and truncated, triangle colours in
 // single precision and rounded to nearest (the reference renderer's arithmetic); fog in

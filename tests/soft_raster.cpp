@@ -402,6 +402,28 @@ TEST(SoftRaster, LinesLeaveOutEndPixel) {
     for (const Fragment& f : fl.done()) EXPECT_EQ(f.color[1], 255);
 }
 
+// The reference renderer walks lines by accumulating (dx, dy) / steps in double precision and
+// truncating: from (0, 0) to (1.5, 9) px the X after six steps of 24/9 subpixels is
+// 15.999999999999998, still pixel 0, where exact arithmetic would reach pixel 1 (the Virtua
+// Tennis court lines need this walk: MSE 6.37 -> 3.07).
+TEST(SoftRaster, LinesAccumulateTheirStepInDoublePrecision) {
+    Collector c;
+    rasterLine(fullScreen(), sv16(0, 0), sv16(24, 144), Band{}, c.sink);
+    EXPECT_EQ(c.pixels(), (std::set<std::pair<int, int>>{
+                              {0, 0}, {0, 1}, {0, 2}, {0, 3}, {0, 4}, {0, 5}, {0, 6}, {1, 7}, {1, 8}}));
+    // Depth steps the same way and truncates: 0 -> 900 over 9 steps.
+    ScreenVertex a = sv16(0, 0), b = sv16(24, 144);
+    a.z = 0, b.z = 900;
+    Collector z;
+    rasterLine(fullScreen(), a, b, Band{}, z.sink);
+    for (const Fragment& f : z.done()) EXPECT_EQ(f.z, f.y * 100) << f.y;
+    // A line running backwards by less than a pixel is shortened by one subpixel: from x = 2.0
+    // px to 1.5 px over 3 rows it starts one subpixel back (1.9375 px) and stays in pixel 1.
+    Collector back;
+    rasterLine(fullScreen(), sv16(32, 0), sv16(24, 48), Band{}, back.sink);
+    EXPECT_EQ(back.pixels(), (std::set<std::pair<int, int>>{{1, 0}, {1, 1}, {1, 2}}));
+}
+
 TEST(SoftRaster, PointsCoverOnePixel) {
     Collector c;
     rasterPoint(fullScreen(), px(7.9375f, 3.0f), Band{}, c.sink);
