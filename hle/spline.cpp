@@ -119,21 +119,23 @@ struct Surface {
     }
 
     // Tensor-product sum of one attribute, separably as the reference tessellates (PPSSPP
-    // SplineCommon.cpp, SubdivisionSurface::Tessellate): each column of four control points is
-    // folded along v (p0·w0 + p1·w1 + p2·w2 + p3·w3, in that order, single precision), then
-    // the four column sums are weighted along u the same way. The rounding depends on this
-    // order; it moves tessellated vertices by a few ulps, which decides integer Z at vertices
-    // and so z-fighting between coplanar patches (Coded Arms draws its floor grate over its lava
-    // with GEQUAL). Frametests: Pursuit Force UCES 0.128 -> 0.126, GachiTora 0.893 -> 0.886.
+    // SplineCommon.cpp, Tessellator::SampleU then SampleV): each row of four control points
+    // (fixed v) is folded along u (p0·w0 + p1·w1 + p2·w2 + p3·w3, in that order, single
+    // precision), then the four row sums are weighted along v the same way. The rounding
+    // depends on this order; it moves tessellated vertices by a few ulps, which decides integer
+    // Z at vertices and so z-fighting between coplanar patches: Coded Arms draws its floor grate
+    // over its lava with GEQUAL, and the reference shows the lava in two streaks around the one
+    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (with depth
+    // interpolation rounded to nearest as in raster.cpp: Coded Arms 89.0 -> 0.0001).
     template <typename Get>
     float sum(const Basis1D& bu, const Basis1D& bv, Get get) const {
-        auto col = [&](int a) {
-            float acc = get(cp(bu, bv, a, 0)) * bv.w[0];
-            for (int b = 1; b < 4; ++b) acc = acc + get(cp(bu, bv, a, b)) * bv.w[b];
+        auto row = [&](int b) {
+            float acc = get(cp(bu, bv, 0, b)) * bu.w[0];
+            for (int a = 1; a < 4; ++a) acc = acc + get(cp(bu, bv, a, b)) * bu.w[a];
             return acc;
         };
-        float acc = col(0) * bu.w[0];
-        for (int a = 1; a < 4; ++a) acc = acc + col(a) * bu.w[a];
+        float acc = row(0) * bv.w[0];
+        for (int b = 1; b < 4; ++b) acc = acc + row(b) * bv.w[b];
         return acc;
     }
 

@@ -67,7 +67,8 @@ std::string describe(const FsKey& k) {
             addKv(s, "clamp", std::string(k.texClampU ? "u" : "") + (k.texClampV ? "v" : ""));
     }
     if (k.fog) add(s, "fog");
-    if (k.alphaTest) addKv(s, "atest", kCmp[(k.alphaTest - 1) & 7]);
+    if (k.alphaTest == 9) addKv(s, "atest", "nonzero");
+    else if (k.alphaTest) addKv(s, "atest", kCmp[(k.alphaTest - 1) & 7]);
     if (k.colorTest) addKv(s, "ctest", kCmp[(k.colorTest - 1) & 7]);
     if (k.depthRange) add(s, "zrange");
     if (k.stencilTest)

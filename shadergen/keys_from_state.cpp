@@ -1,5 +1,6 @@
 // State → keys, fixed-function decision and uniform values (see keys_from_state.h).
 #include "shadergen/keys_from_state.h"
+#include "softmodel/blend.h"
 
 #include <xxhash.h>
 
@@ -123,6 +124,8 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
         }
         k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ref §3.9)
         if (st.ATE_on() && st.ATEST_func() != 1) k.alphaTest = u8(st.ATEST_func() + 1);
+        // The reference's implicit alpha != 0 test (softmodel/blend.h): code 9.
+        if (soft::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
         if (st.CTE_on() && st.CTEST_func() != 1) k.colorTest = u8(st.CTEST_func() + 1);
         if (st.STE_on() && fmt != GE_FORMAT_565) {
             // 5650 has no stencil bits: the stored value reads as 0 and is never written, but

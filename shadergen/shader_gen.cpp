@@ -94,9 +94,9 @@ std::string recTexel(int texel) { return "v_rec[" + std::to_string(texel) + "]";
 std::string recI(int i) {
     return "packInt2x32(ivec2(" + recTexel(tri::kInts + i / 2) + ((i & 1) ? ".zw))" : ".xy))");
 }
-// Depth plane at the sample point, clamped to 0–65535 (raster.cpp Plane::at + std::clamp).
-std::string zPlaneExpr() {
-    return "planeAt(" + recI(tri::kIZ) + ", " + recI(tri::kIZ + 1) + ", " + recI(tri::kIZ + 2) + ", 65535)";
+// Depth at the sample point (raster.cpp rasterTriangle): the three depth slots hold Z of o[0..2].
+std::string zExpr() {
+    return "depthAt(" + recI(tri::kIZ) + ", " + recI(tri::kIZ + 1) + ", " + recI(tri::kIZ + 2) + ")";
 }
 
 // Helper functions of the exact path. Each mirrors softmodel/raster.cpp (rasterTriangle,
@@ -109,11 +109,7 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
     auto flag = [&](u32 f) { return "((" + hdr + ".x & " + std::to_string(f) + "u) != 0u)"; };
     s += "flat in uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n";
     s += "int64_t g_cx, g_cy;\n"
-         "vec3 g_w;\n"  // edge weights of the sample point in attribute order
-         "int planeAt(int64_t b, int64_t kx, int64_t ky, int hi) {\n"
-         "  int64_t v = (b + kx * g_cx + ky * g_cy) >> 14;\n"
-         "  return v < int64_t(0) ? 0 : (v > int64_t(hi) ? hi : int(v));\n"
-         "}\n";
+         "vec3 g_w;\n";  // edge weights of the sample point in attribute order
     // Edge function i at drawing position (cx, cy) (1/16 units): rasterTriangle's e_i.
     s += "int64_t edgeAt(int i, int64_t cx, int64_t cy) {\n"
          "  if (i == 0) return " + recI(tri::kIA) + " * cx + " + recI(tri::kIB) + " * cy + " + recI(tri::kIC) + ";\n"
@@ -146,6 +142,14 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
          "  return r;\n"
          "}\n"
          "vec3 recF(uvec4 t) { return uintBitsToFloat(t.xyz); }\n";
+    // Depth (rasterTriangle): three equal values are used as they are; otherwise the float sum
+    // interpF in attribute order, rounded to nearest even (the reference's cvtps2dq) and kept to
+    // 0–65535.
+    s += "int depthAt(int64_t a, int64_t b, int64_t c) {\n"
+         "  if (a == b && b == c) return a < int64_t(0) ? 0 : (a > int64_t(65535) ? 65535 : int(a));\n"
+         "  float r = roundEven(interpF(vec3(float(a), float(b), float(c)), g_w, wsumRecip()));\n"
+         "  return r > 0.0 ? (r >= 65535.0 ? 65535 : int(r)) : 0;\n"
+         "}\n";
     // interpolateColor: rounded to nearest even, kept to 0–255.
     s += "ivec4 bytes4(uint p) { return ivec4(uvec4(p, p >> 8, p >> 16, p >> 24) & 255u); }\n"
          "ivec4 interpColor(uvec3 pc, bool varies) {\n"
@@ -440,7 +444,9 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "  if (v_fog >= 1.0) return 255;\n"
              "  return min(int(floor(v_fog * 256.0)), 255);\n"
              "}\n";
-    if (k.alphaTest) {
+    // alphaTest 9: the reference renderer's implicit "alpha != 0" test (softmodel/blend.h
+    // referenceDropsZeroAlpha), which replaces an off or trivially true alpha test: no uniforms.
+    if (k.alphaTest && k.alphaTest != 9) {
         s += "uniform ivec2 u_alphaTest;\n";
         emitCompare(s, "alphaCompare", k.alphaTest - 1);
     }
@@ -493,12 +499,11 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "  g_cy = int64_t(16 * pix.y + sampleOffset());\n"
              "  if (edgeTestFails(g_cx, g_cy)) discard;\n"
              "  g_w = weightsAt(pix.x, pix.y);\n"
-             "  int z = " + zPlaneExpr() + ";\n";
+             "  int z = " + zExpr() + ";\n";
         if (k.tex) s += "  exactTexInputs(pix);\n";
     } else {
-        // Z is linear in screen space and truncated; the epsilon keeps exact vertex values exact
-        // against float interpolation noise.
-        s += "  int z = int(clamp(v_z + (1.0 / 1024.0), 0.0, 65535.0));\n";
+        // Z is linear in screen space and rounded to nearest (as rasterTriangle rounds it).
+        s += "  int z = int(clamp(floor(v_z + 0.5), 0.0, 65535.0));\n";
     }
     s += "  float zOut = float(z) * (1.0 / 65536.0);\n";
     if (k.tex) s += "  ivec4 t = sampleTexture();\n";  // before any discard: derivatives
@@ -559,7 +564,9 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         // Secondary colour after the texture function, then clamp (ref §8.4 step 1).
         s += "  c.rgb = clamp(c.rgb + sec, 0, 255);\n"
              "  c.a = clamp(c.a, 0, 255);\n";
-        if (k.alphaTest)
+        if (k.alphaTest == 9)
+            s += "  if (c.a == 0) discard;\n";
+        else if (k.alphaTest)
             s += "  if (!alphaCompare(c.a & u_alphaTest.y, u_alphaTest.x & u_alphaTest.y)) discard;\n";
         if (k.fog)
             s += "  {\n"

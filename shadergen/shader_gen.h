@@ -86,7 +86,8 @@ inline constexpr u32 kFlagSwapped = 1u << 7;      // negative area: edges in in0
 inline constexpr u32 kFlagThrough = 1u << 8;      // texture coordinates screen-linear
 inline constexpr int kEdgeThresholdShift = 9;      // bits 9–11: edge i needs E_i ≥ bit (top-left rule)
 // Int64. Edge i (opposite the i-th vertex of in0, in1, in2 — or in0, in2, in1 when swapped):
-// E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). Depth plane (base, kx, ky).
+// E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). kIZ: the three vertex depths in
+// attribute order.
 inline constexpr int kIA = 0, kIB = 3, kIC = 6, kIZ = 9;
 static_assert(kIZ + 3 <= 2 * (kTexels - kInts));
 }  // namespace tri

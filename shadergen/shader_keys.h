@@ -75,7 +75,8 @@ struct FsKey {
     u8 texClampV = 0;
     // ---- per-fragment tests and colour ops ----
     u8 fog = 0;
-    u8 alphaTest = 0;    // ATF + 1 (0 = no test); ALWAYS canonicalised to 0
+    u8 alphaTest = 0;    // ATF + 1 (0 = no test); ALWAYS canonicalised to 0; 9 = alpha != 0
+                         // (the reference renderer's implicit test, softmodel/blend.h)
     u8 colorTest = 0;    // CTF + 1 (0 = no test)
     u8 depthRange = 0;   // MINZ/MAXZ test (not in through mode)
     u8 stencilTest = 0;  // STF + 1 (0 = no test)

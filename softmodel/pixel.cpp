@@ -252,6 +252,13 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->alphaMask = int(st.ATEST_mask());
     im->alphaRef = int(st.ATEST_ref()) & im->alphaMask;
     im->alphaTest = st.ATE_on() && !clear && im->alphaFunc != CMP_ALWAYS;
+    // The reference renderer's implicit "alpha != 0" test for source-alpha blending (blend.h).
+    if (!clear && referenceDropsZeroAlpha(st, im->texture)) {
+        im->alphaTest = true;
+        im->alphaFunc = CMP_NOTEQUAL;
+        im->alphaMask = 0xFF;
+        im->alphaRef = 0;
+    }
 
     // Colour test.
     im->colorFunc = u8(st.CTEST_func());

@@ -11,8 +11,8 @@
 //   - lines: the reference renderer's walk of max(|dx|, |dy|) / 16 double-precision steps,
 //     leaving out the end pixel (§8.11);
 //   - points: the one pixel containing the vertex (§4.1).
-// Attributes (§8.1): Z interpolated linearly in screen space and truncated, triangle colours in
-// single precision and rounded to nearest (the reference renderer's arithmetic); fog in
+// Attributes (§8.1): triangle Z and colours interpolated linearly in screen space in single
+// precision and rounded to nearest (the reference renderer's x86 arithmetic); fog in
 // screen space; texture coordinates perspective-correct (linear for rectangles and through mode,
 // where W = 1). The level of detail for TLEVEL mode 0 is derived per 2×2 pixel quad from the
 // change of s across X and of t down Y (§6.6).
@@ -118,15 +118,6 @@ float texLog2(float v);
 // ---- Interpolation setup shared with the GL translator (translator/tri_setup.h) ----
 // The GL backend evaluates triangle attributes per pixel from the very numbers this rasteriser
 // uses, so changes to this arithmetic reach both backends.
-// Plane of a screen-linear attribute (Z, Gouraud colour): value << 14 at drawing (0, 0) and
-// per-1/16-pixel gradients << 14; the attribute at a pixel centre (cx, cy) (1/16 units) is
-// at(cx, cy) (floored).
-struct AttrPlane {
-    s64 base = 0, kx = 0, ky = 0;
-    s64 at(s64 x, s64 y) const { return (base + kx * x + ky * y) >> 14; }
-};
-// The plane rasterTriangle uses for an attribute with values V at vertices (X, Y) (1/16 pixel).
-AttrPlane attributePlane(const s64 X[3], const s64 Y[3], const s64 V[3]);
 // 1/w as rasterTriangle weights perspective-correct texture coordinates with (w near 0 kept away
 // from a division by zero).
 double perspectiveRecip(float w);

@@ -324,17 +324,19 @@ TEST(Spline, IndexedControlPoints) {
 
 }  // namespace
 
-// The reference sums each attribute separably in single precision: every column of control
-// points folded along v (c0·w0 + c1·w1 + c2·w2 + c3·w3, in that order), then the column sums
-// along u the same way. Expected values below are that sum written out with the Bernstein
-// weights at t = 1/13 (u) and 5/13 (v) of a 13×13 division; the control points are Coded Arms'
-// floor quad (x ∈ {200, 240}, z ∈ {440, 480}, each corner doubled), whose vertices the
-// reference rounds exactly this way.
+// The reference sums each attribute separably in single precision (PPSSPP SplineCommon.cpp,
+// Tessellator::SampleU then SampleV): every row of control points (fixed v) folded along u
+// (r0·w0 + r1·w1 + r2·w2 + r3·w3, in that order), then the row sums along v the same way.
+// Expected values below are that sum written out with the Bernstein weights at t = 2/13 (u)
+// and 3/13 (v) of a 13×13 division; the control points are Coded Arms' floor grate (x ∈ {240,
+// 200}, z ∈ {440, 480}, each corner doubled), whose vertices the reference rounds exactly this
+// way. Summing columns first (v, then u) gives different floats here, so the test tells the
+// two orders apart.
 TEST(Spline, SummationOrderFollowsTheReference) {
     Memory mem;
     GeState st;
-    const float xs[4] = {200.0f, 200.0f, 240.0f, 240.0f};
-    const float zs[4] = {480.0f, 480.0f, 440.0f, 440.0f};
+    const float xs[4] = {240.0f, 240.0f, 200.0f, 200.0f};
+    const float zs[4] = {440.0f, 440.0f, 480.0f, 480.0f};
     for (u32 v = 0; v < 4; ++v)
         for (u32 u = 0; u < 4; ++u) {
             const u32 a = kV + 12 * (v * 4 + u);
@@ -347,24 +349,35 @@ TEST(Spline, SummationOrderFollowsTheReference) {
     ASSERT_EQ(out.verts.size(), 14u * 14u);
     const float inv = 1.0f / 13.0f;
     float wu[4], wv[4];
-    bezierWeights(1.0f * inv, wu);
-    bezierWeights(5.0f * inv, wv);
-    // x: each column is constant along v, so the v fold gives x·(wv0 + wv1 + wv2 + wv3) summed
-    // in order; z: every column holds the same z values.
-    float colX[4], colZ = 0.0f;
-    for (int a = 0; a < 4; ++a) {
-        float acc = xs[a] * wv[0];
-        for (int b = 1; b < 4; ++b) acc = acc + xs[a] * wv[b];
-        colX[a] = acc;
+    bezierWeights(2.0f * inv, wu);
+    bezierWeights(3.0f * inv, wv);
+    // Rows first: x is the same in every row; z is constant along each row.
+    float rowX = xs[0] * wu[0], rowZ[4];
+    for (int a = 1; a < 4; ++a) rowX = rowX + xs[a] * wu[a];
+    for (int b = 0; b < 4; ++b) {
+        rowZ[b] = zs[b] * wu[0];
+        for (int a = 1; a < 4; ++a) rowZ[b] = rowZ[b] + zs[b] * wu[a];
     }
-    colZ = zs[0] * wv[0];
+    float x = rowX * wv[0], z = rowZ[0] * wv[0];
+    for (int b = 1; b < 4; ++b) {
+        x = x + rowX * wv[b];
+        z = z + rowZ[b] * wv[b];
+    }
+    // Columns first, for the check that the two orders differ at this vertex.
+    float colX[4], colZ = zs[0] * wv[0];
     for (int b = 1; b < 4; ++b) colZ = colZ + zs[b] * wv[b];
-    float x = colX[0] * wu[0], z = colZ * wu[0];
-    for (int a = 1; a < 4; ++a) {
-        x = x + colX[a] * wu[a];
-        z = z + colZ * wu[a];
+    for (int a = 0; a < 4; ++a) {
+        colX[a] = xs[a] * wv[0];
+        for (int b = 1; b < 4; ++b) colX[a] = colX[a] + xs[a] * wv[b];
     }
-    const DecodedVertex& v = out.verts[5 * 14 + 1];
+    float xc = colX[0] * wu[0], zc = colZ * wu[0];
+    for (int a = 1; a < 4; ++a) {
+        xc = xc + colX[a] * wu[a];
+        zc = zc + colZ * wu[a];
+    }
+    ASSERT_NE(x, xc);
+    ASSERT_NE(z, zc);
+    const DecodedVertex& v = out.verts[3 * 14 + 2];
     EXPECT_EQ(v.pos[0], x);
     EXPECT_EQ(v.pos[2], z);
 }

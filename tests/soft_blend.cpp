@@ -5,6 +5,7 @@
 
 #include "hle/pixel_format.h"
 #include "soft_pixel_fixture.h"
+#include "softmodel/blend.h"
 #include "softmodel/framebuffer.h"
 
 using namespace ge;
@@ -344,4 +345,72 @@ TEST(SoftClear, NoAlphaIn5650) {
     rig.setPixel(0, 0, 0x1234);
     rig.draw(PixelRig::frag(0, 0, 0xFF, 0xFF, 0xFF, 0xFF));
     EXPECT_EQ(rig.pixel(0, 0), 0x1234u);
+}
+
+// The reference renderer's implicit "alpha != 0" test (softmodel/blend.h referenceDropsZeroAlpha,
+// PPSSPP Rasterizer.cpp OPTIMIZED_ALPHATEST_ON): with A = As, B = 1 − As, no depth write and no
+// stencil test, an alpha-0 fragment leaves the pixel alone even though dithering would change it.
+// Values from Monster Hunter 3rd's HUD: 5650 Cd = (24, 53, 23) → (198, 215, 189); at (2, 1) the SDK
+// matrix adds 3, which would store (201, 218, 192) → (25, 54, 24).
+TEST(SoftBlend, ZeroAlphaSourceAlphaBlendSkipsDither) {
+    const u32 before = 24u | 53u << 5 | 23u << 11, dithered = 25u | 54u << 5 | 24u << 11;
+    for (bool depthWrite : {false, true}) {
+        PixelRig rig(GE_FORMAT_565);
+        setSdkDither(rig);
+        rig.set(GE_CMD_DTE, 1);
+        rig.set(GE_CMD_ABE, 1);
+        rig.set(GE_CMD_BLEND, 2 | 3 << 4);
+        if (depthWrite) {
+            rig.set(GE_CMD_ZTE, 1);
+            rig.set(GE_CMD_ZTEST, 1);  // ALWAYS, writing depth: the reference draws the fragment
+        }
+        rig.setPixel(2, 1, before);
+        rig.draw(PixelRig::frag(2, 1, 0, 1, 1, 0));
+        EXPECT_EQ(rig.pixel(2, 1), depthWrite ? dithered : before) << depthWrite;
+    }
+}
+
+TEST(SoftBlend, ZeroAlphaRuleConditions) {
+    PixelRig rig(GE_FORMAT_8888);
+    rig.set(GE_CMD_ABE, 1);
+    rig.set(GE_CMD_BLEND, 2 | 3 << 4);
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_BLEND, 2 | 10 << 4);  // B = FIXB
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_BLEND, 2 | 3 << 4 | 1 << 8);  // any equation 0–5 counts
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ABE, 0);
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ABE, 1);
+
+    // Alpha test: a real one keeps its own function; GEQUAL 0 counts as off.
+    rig.set(GE_CMD_ATE, 1);
+    rig.set(GE_CMD_ATEST, 6 | 0x10 << 8 | 0xFF << 16);
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ATEST, 7 | 0 << 8 | 0xFF << 16);
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ATE, 0);
+
+    // Depth writes and stencil tests turn it off; ZMSK (no write) does not.
+    rig.set(GE_CMD_ZTE, 1);
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ZMSK, 1);
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_ZTE, 0);
+    rig.set(GE_CMD_STE, 1);
+    rig.set(GE_CMD_STEST, 2);  // EQUAL
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_STEST, 1);  // ALWAYS with KEEP everywhere: no effective stencil test
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    rig.set(GE_CMD_STE, 0);
+
+    // A CLUT texture whose palette has only full alphas cannot give alpha 0 (as the reference
+    // reasons); one zero-alpha entry (and a zero AND of the entries) brings the rule back.
+    rig.set(GE_CMD_TPF, GE_TFMT_CLUT8);
+    rig.set(GE_CMD_CLUT, 3 | 0xFF << 8);
+    for (u32 i = 0; i < 256; ++i) writeLE32(rig.st.clut + 4 * i, 0xFF000000u | i);
+    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, true));
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));  // untextured: palette irrelevant
+    writeLE32(rig.st.clut + 4 * 5, 0x00000000u);
+    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, true));
 }

@@ -148,15 +148,16 @@ TEST(SoftRaster, TopLeftRuleOnPixelCentres) {
     }
 }
 
-TEST(SoftRaster, GouraudColourRoundedAndZTruncated) {
+TEST(SoftRaster, GouraudColourAndZRounded) {
     // v0 (0,0), v1 (10,0), v2 (0,10) pixels; pixel (2,3) is sampled at (2 + 7/16, 3 + 7/16):
     // barycentrics b1 = 0.24375, b2 = 0.34375, b0 = 0.4125. Colours round to nearest (the
-    // reference renderer's float interpolation), Z is floored.
+    // reference renderer's float interpolation), and so does Z: the reference converts its float
+    // depth with cvtps2dq (round to nearest even), not by truncation.
     ScreenVertex v0 = px(0, 0), v1 = px(10, 0), v2 = px(0, 10);
     v0.color[0] = 0, v1.color[0] = 101, v2.color[0] = 203;  // 24.61875 + 69.78125 = 94.4 → 94
     v0.color[1] = 0, v1.color[1] = 0, v2.color[1] = 2;      // 0.6875 → 1 (rounded, not floored)
     v0.color[3] = v1.color[3] = v2.color[3] = 255;
-    v0.z = 1000, v1.z = 2000, v2.z = 3001;                   // 412.5 + 487.5 + 1031.59 → 1931
+    v0.z = 1000, v1.z = 2000, v2.z = 3001;                   // 412.5 + 487.5 + 1031.59 → 1932
     v0.secondary[1] = 10, v1.secondary[1] = 20, v2.secondary[1] = 31;  // 4.125 + 4.875 + 10.656 = 19.66 → 20
     RasterParams rp = fullScreen();
     Collector c;
@@ -168,7 +169,7 @@ TEST(SoftRaster, GouraudColourRoundedAndZTruncated) {
             EXPECT_EQ(f.color[0], 94);
             EXPECT_EQ(f.color[1], 1);
             EXPECT_EQ(f.color[3], 255);
-            EXPECT_EQ(f.z, 1931);
+            EXPECT_EQ(f.z, 1932);
             EXPECT_EQ(f.secondary[1], 20);
             EXPECT_EQ(f.fog, 255);  // fog off
         }
@@ -182,7 +183,7 @@ TEST(SoftRaster, GouraudColourRoundedAndZTruncated) {
     for (const Fragment& f : flat.done()) {
         EXPECT_EQ(f.color[0], 203);
         if (f.x == 2 && f.y == 3) {
-            EXPECT_EQ(f.z, 1931);
+            EXPECT_EQ(f.z, 1932);
         }
     }
 }

@@ -99,6 +99,73 @@ TEST(SoftSampler, BilinearRoundsThePositionNearestSampleTruncates) {
     EXPECT_EQ(red(sampleNearest(lv, 1279.9f / 4096.0f, 0.5f, false, false)), 160u);
 }
 
+TEST(SoftSampler, FallbackBilinearTruncatesThePosition) {
+    // The reference renderer's C++ sampler (used where its JIT routine is not compiled yet, see
+    // SamplerJitModel) converts s·w·256 with int(): truncation. Same 16×1 texture as above.
+    std::vector<u32> row(16, rgba(0, 0, 0, 255));
+    row[4] = rgba(160, 0, 0, 255);
+    const TexLevel lv = levelOf(row, 4, 0);
+    auto red = [](u32 c) { return c & 255; };
+    // s·4096 = 1023.6 → 1023 − 128 = 895: u0 3, fu 7 → 160·7·16 >> 8 = 70 (JIT: 80).
+    EXPECT_EQ(red(sampleBilinearFallback(lv, 1023.6f / 4096.0f, 0.5f, false, false)), 70u);
+    EXPECT_EQ(red(sampleBilinear(lv, 1023.6f / 4096.0f, 0.5f, false, false)), 80u);
+    // 1039.5 → 1039 → 911: fu 8 → 80 (JIT, ties to even: 90).
+    EXPECT_EQ(red(sampleBilinearFallback(lv, 1039.5f / 4096.0f, 0.5f, false, false)), 80u);
+    // Exactly on a sixteenth the two agree: 1040 → 912, fu 9 → 90.
+    EXPECT_EQ(red(sampleBilinearFallback(lv, 1040.0f / 4096.0f, 0.5f, false, false)), 90u);
+    EXPECT_EQ(red(sampleBilinear(lv, 1040.0f / 4096.0f, 0.5f, false, false)), 90u);
+    // A 1:1 mapping just below a texel sixteenth (a float sum one ulp short) drops a sixteenth.
+    const float justBelow = std::nextafter(1040.0f / 4096.0f, 0.0f);
+    EXPECT_EQ(red(sampleBilinearFallback(lv, justBelow, 0.5f, false, false)), 80u);
+    EXPECT_EQ(red(sampleBilinear(lv, justBelow, 0.5f, false, false)), 90u);
+
+    // The Sampler's fallback routine is the same filter with the same level choice.
+    Sampler sm;
+    sm.levels[0] = lv;
+    sm.levelCount = 1;
+    sm.fixedChoice = true;
+    sm.fixed = LevelChoice{0, 0, true};
+    sm.finalize();
+    EXPECT_EQ(red(sm.sampleFallback(1023.6f / 4096.0f, 0.5f, 0, 1)), 70u);
+    EXPECT_EQ(red(sm.sample(1023.6f / 4096.0f, 0.5f, 0, 1)), 80u);
+    // Nearest is the same in both samplers (truncation).
+    sm.fixed = LevelChoice{0, 0, false};
+    sm.finalize();
+    EXPECT_EQ(red(sm.sampleFallback(1279.9f / 4096.0f, 0.5f, 0, 1)), 160u);
+    EXPECT_EQ(red(sm.sample(1279.9f / 4096.0f, 0.5f, 0, 1)), 160u);
+}
+
+TEST(SoftSampler, JitModelFollowsTheCompileQueue) {
+    GeState st;
+    auto set = [&](u8 cmd, u32 arg) { st.regs[cmd] = u32(cmd) << 24 | (arg & 0xFFFFFF); };
+    set(GE_CMD_TPF, 3);                  // 8888
+    set(GE_CMD_TSIZE0, 8 << 8 | 8);      // 256×256
+    set(GE_CMD_TBW0, 256);
+    set(GE_CMD_TFUNC, 0 | 1 << 8);       // MODULATE, RGBA
+    SamplerJitModel model;
+    // A white MODULATE draw: its REPLACE configuration was never compiled → C++ fallback, queued.
+    EXPECT_TRUE(model.drawUsesFallback(st, true));
+    // Same configuration again: nothing new was set up, so the queue was not compiled.
+    EXPECT_TRUE(model.drawUsesFallback(st, true));
+    // Not white: no rewrite, the compiled MODULATE routine.
+    EXPECT_FALSE(model.drawUsesFallback(st, false));
+    // A draw with a configuration not compiled yet (another size) compiles the queue with it ...
+    set(GE_CMD_TSIZE0, 7 << 8 | 7);
+    EXPECT_TRUE(model.drawUsesFallback(st, true));  // ... but its own REPLACE form is new: queued
+    // ... so the 256×256 REPLACE routine now exists.
+    set(GE_CMD_TSIZE0, 8 << 8 | 8);
+    EXPECT_FALSE(model.drawUsesFallback(st, true));
+    // Other texture functions are never rewritten.
+    set(GE_CMD_TFUNC, 2);
+    EXPECT_FALSE(model.drawUsesFallback(st, true));
+    // A draw that natively uses REPLACE compiles that configuration directly.
+    model.reset();
+    set(GE_CMD_TFUNC, 3 | 1 << 8);
+    EXPECT_FALSE(model.drawUsesFallback(st, true));
+    set(GE_CMD_TFUNC, 0 | 1 << 8);
+    EXPECT_FALSE(model.drawUsesFallback(st, true));
+}
+
 TEST(SoftSampler, SizesAbove512SaturateAddressing) {
     // TSIZE 2^10: coordinates scale by 1024, addressing uses & 1023 & 511 (repeat) or ≤ 511.
     std::vector<u32> texels(512);

@@ -1,6 +1,6 @@
 // Per-triangle records for exact interpolation (see tri_setup.h). Every number mirrors
 // softmodel/raster.cpp: rasterTriangle's oriented edges and sample offset, attribute order,
-// constant-attribute shortcuts, depth plane and weight reciprocal; rasterRectangle's covered
+// constant-attribute shortcuts, depth values and weight reciprocal; rasterRectangle's covered
 // box, orientation table and single-precision steps.
 #include "translator/tri_setup.h"
 
@@ -25,10 +25,13 @@ void putI(TriRecord& r, int i, s64 v) {
     const int k = T::kInts * 4 + 2 * i;
     r.w[k] = u32(b), r.w[k + 1] = u32(b >> 32);
 }
-void putPlane(TriRecord& r, const soft::AttrPlane& p) {
-    putI(r, T::kIZ, p.base);
-    putI(r, T::kIZ + 1, p.kx);
-    putI(r, T::kIZ + 2, p.ky);
+// Depth of o[0], o[1], o[2] in the three depth slots. The shader interpolates them as
+// rasterTriangle does (single-precision weighted sum, rounded to nearest even) unless all three
+// are equal, which is rasterTriangle's constant shortcut (the value as is).
+void putDepths(TriRecord& r, int z0, int z1, int z2) {
+    putI(r, T::kIZ, z0);
+    putI(r, T::kIZ + 1, z1);
+    putI(r, T::kIZ + 2, z2);
 }
 u32 packColor(const u8* c, int n) {
     u32 v = 0;
@@ -37,7 +40,7 @@ u32 packColor(const u8* c, int n) {
 }
 // Constant attributes (rectangles, fragments): flags clear, so vertex 0's values everywhere.
 void putConstAttributes(TriRecord& r, u16 z, const u8 color[4], const u8 secondary[3]) {
-    putPlane(r, soft::AttrPlane{s64(z) * 16384, 0, 0});
+    putDepths(r, z, z, z);
     putU32(r, T::kColors, 0, packColor(color, 4));
     putU32(r, T::kSecondary, 0, packColor(secondary, 3));
 }
@@ -90,15 +93,8 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
         putF32(r, T::kClipW, i, o[i]->w);
     }
 
-    // Depth plane over the original vertex order (a plane does not depend on it); constant when
-    // all three agree (rasterTriangle's shortcut: the value as is).
-    if (in0.z == in1.z && in1.z == in2.z) {
-        putPlane(r, soft::AttrPlane{s64(u16(in0.z)) * 16384, 0, 0});
-    } else {
-        const s64 X[3] = {in0.x, in1.x, in2.x}, Y[3] = {in0.y, in1.y, in2.y};
-        const s64 Z[3] = {in0.z, in1.z, in2.z};
-        putPlane(r, soft::attributePlane(X, Y, Z));
-    }
+    // Depth in attribute order; three equal values are rasterTriangle's constant shortcut.
+    putDepths(r, o[0]->z, o[1]->z, o[2]->z);
     // Colours of o[], or the constant source (in0, or the provoking vertex when flat shading)
     // in every slot.
     const bool colConst = !rp.gouraud || (std::memcmp(in0.color, in1.color, 4) == 0 &&

@@ -1,12 +1,12 @@
 // Per-triangle records for exact interpolation on the GL path (shadergen/shader_gen.h `tri`
 // layout, HostCaps::exactInterp).
 //
-// Why: GL interpolates attributes in float from the vertices; the GE (and the software model)
-// evaluates a fixed-point depth plane anchored at a vertex and single-precision sums of vertex
-// values weighted by exact edge functions, at its own sample point (16·x + 7), in its own vertex
-// order. These records carry the software rasteriser's own per-triangle numbers — its oriented
-// edge functions and sample offset (soft::triangleSampleOffset), its depth plane
-// (soft::attributePlane), its attribute order, weight reciprocal and constant-attribute
+// Why: GL interpolates attributes in float from the vertices; the software model (as the
+// reference renderer) evaluates single-precision sums of vertex values (depth included, rounded)
+// weighted by exact edge functions, at its own sample point (16·x + 7), in its own vertex order.
+// These records carry the software rasteriser's own per-triangle numbers — its oriented edge
+// functions and sample offset (soft::triangleSampleOffset), the vertex depths in attribute
+// order, its attribute order, weight reciprocal and constant-attribute
 // shortcuts — and the fragment shader (shadergen emitExactHelpers) repeats rasterTriangle's
 // per-pixel arithmetic on them. Setup changes in softmodel/raster.cpp reach GL through the shared
 // functions; a change to the per-pixel formulas must be mirrored in shader_gen.cpp (the GlParity
