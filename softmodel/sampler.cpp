@@ -120,15 +120,13 @@ inline u32 nearestT(const TexLevel& lv, float s, float t) {
     return lv.texels[size_t(v) * size_t(lv.storedW) + size_t(u)];
 }
 
-// TRUNC: the reference renderer's C++ fallback sampler (Sampler.cpp GetTexelCoordinatesQuadS/T,
-// int(s·w·256) − 128), which truncates where its x86 JIT rounds (see SamplerJitModel in sampler.h).
-template <bool CU, bool CV, bool TRUNC = false>
+template <bool CU, bool CV>
 inline u32 bilinearT(const TexLevel& lv, float s, float t) {
     if (!lv.texels) return 0;
-    // Rounded position (texelFixedRound; truncated for the fallback), half a texel back (128/256),
-    // then 8 integer bits and the top 4 of the fraction.
-    const s64 bu = (TRUNC ? texelFixed(s * lv.scaleU) : texelFixedRound(s * lv.scaleU)) - 128;
-    const s64 bv = (TRUNC ? texelFixed(t * lv.scaleV) : texelFixedRound(t * lv.scaleV)) - 128;
+    // Rounded position (texelFixedRound), half a texel back (128/256), then 8 integer bits and
+    // the top 4 of the fraction.
+    const s64 bu = texelFixedRound(s * lv.scaleU) - 128;
+    const s64 bv = texelFixedRound(t * lv.scaleV) - 128;
     const int fu = int((bu >> 4) & 15), fv = int((bv >> 4) & 15);
     const s64 u0 = bu >> 8, v0 = bv >> 8;
     const int ua = addressTexel<CU>(u0, lv.wrapMaskU, lv.clampMaxU);
@@ -140,81 +138,58 @@ inline u32 bilinearT(const TexLevel& lv, float s, float t) {
     return compact(sum >> 8);
 }
 
-template <bool LINEAR, bool CU, bool CV, bool TRUNC = false>
+template <bool LINEAR, bool CU, bool CV>
 inline u32 filterT(const TexLevel& lv, float s, float t) {
-    if constexpr (LINEAR) return bilinearT<CU, CV, TRUNC>(lv, s, t);
-    else return nearestT<CU, CV>(lv, s, t);  // nearest truncates in both samplers
+    if constexpr (LINEAR) return bilinearT<CU, CV>(lv, s, t);
+    else return nearestT<CU, CV>(lv, s, t);
 }
 
-template <bool TRUNC>
-u32 filterLevelT(const TexLevel& lv, float s, float t, bool linear, bool cu, bool cv) {
+u32 filterLevel(const TexLevel& lv, float s, float t, bool linear, bool cu, bool cv) {
     const int k = (linear ? 4 : 0) | (cu ? 2 : 0) | (cv ? 1 : 0);
     switch (k) {
-    case 0: return filterT<false, false, false, TRUNC>(lv, s, t);
-    case 1: return filterT<false, false, true, TRUNC>(lv, s, t);
-    case 2: return filterT<false, true, false, TRUNC>(lv, s, t);
-    case 3: return filterT<false, true, true, TRUNC>(lv, s, t);
-    case 4: return filterT<true, false, false, TRUNC>(lv, s, t);
-    case 5: return filterT<true, false, true, TRUNC>(lv, s, t);
-    case 6: return filterT<true, true, false, TRUNC>(lv, s, t);
-    default: return filterT<true, true, true, TRUNC>(lv, s, t);
+    case 0: return filterT<false, false, false>(lv, s, t);
+    case 1: return filterT<false, false, true>(lv, s, t);
+    case 2: return filterT<false, true, false>(lv, s, t);
+    case 3: return filterT<false, true, true>(lv, s, t);
+    case 4: return filterT<true, false, false>(lv, s, t);
+    case 5: return filterT<true, false, true>(lv, s, t);
+    case 6: return filterT<true, true, false>(lv, s, t);
+    default: return filterT<true, true, true>(lv, s, t);
     }
 }
 
 // One known level, one known filter: the common case (no mipmaps, or constant level mode).
-template <bool LINEAR, bool CU, bool CV, bool TRUNC>
+template <bool LINEAR, bool CU, bool CV>
 u32 sampleFixedT(const Sampler& sm, float s, float t, float, float) {
-    return filterT<LINEAR, CU, CV, TRUNC>(sm.levels[sm.fixed.level], s, t);
+    return filterT<LINEAR, CU, CV>(sm.levels[sm.fixed.level], s, t);
 }
 
-template <bool TRUNC>
 u32 sampleWithChoice(const Sampler& sm, const LevelChoice& c, float s, float t) {
     const int last = std::max(sm.levelCount - 1, 0);
     const int l = std::min(c.level, last);
-    u32 col = filterLevelT<TRUNC>(sm.levels[l], s, t, c.linear, sm.clampU, sm.clampV);
+    u32 col = filterLevel(sm.levels[l], s, t, c.linear, sm.clampU, sm.clampV);
     if (c.frac && l + 1 <= last) {
-        const u32 next = filterLevelT<TRUNC>(sm.levels[l + 1], s, t, c.linear, sm.clampU, sm.clampV);
+        const u32 next = filterLevel(sm.levels[l + 1], s, t, c.linear, sm.clampU, sm.clampV);
         col = mixLevels(col, next, c.frac);
     }
     return col;
 }
 
-template <bool TRUNC>
 u32 sampleFixedGeneral(const Sampler& sm, float s, float t, float, float) {
-    return sampleWithChoice<TRUNC>(sm, sm.fixed, s, t);
+    return sampleWithChoice(sm, sm.fixed, s, t);
 }
 
-template <bool TRUNC>
 u32 sampleDynamic(const Sampler& sm, float s, float t, float lod, float w) {
-    return sampleWithChoice<TRUNC>(sm, chooseLevel(sm.lod, levelOfDetail16(sm.lod, lod, w)), s, t);
-}
-
-template <bool TRUNC>
-Sampler::SampleFn pickSampleFn(const Sampler& sm) {
-    if (sm.fixedChoice && sm.fixed.frac == 0 && sm.fixed.level < std::max(sm.levelCount, 1)) {
-        const int k = (sm.fixed.linear ? 4 : 0) | (sm.clampU ? 2 : 0) | (sm.clampV ? 1 : 0);
-        static constexpr Sampler::SampleFn table[8] = {
-            &sampleFixedT<false, false, false, TRUNC>, &sampleFixedT<false, false, true, TRUNC>,
-            &sampleFixedT<false, true, false, TRUNC>,  &sampleFixedT<false, true, true, TRUNC>,
-            &sampleFixedT<true, false, false, TRUNC>,  &sampleFixedT<true, false, true, TRUNC>,
-            &sampleFixedT<true, true, false, TRUNC>,   &sampleFixedT<true, true, true, TRUNC>,
-        };
-        return table[k];
-    }
-    if (sm.fixedChoice) return &sampleFixedGeneral<TRUNC>;
-    return &sampleDynamic<TRUNC>;
+    return sampleWithChoice(sm, chooseLevel(sm.lod, levelOfDetail16(sm.lod, lod, w)), s, t);
 }
 
 }  // namespace
 
 u32 sampleNearest(const TexLevel& lv, float s, float t, bool clampU, bool clampV) {
-    return filterLevelT<false>(lv, s, t, false, clampU, clampV);
+    return filterLevel(lv, s, t, false, clampU, clampV);
 }
 u32 sampleBilinear(const TexLevel& lv, float s, float t, bool clampU, bool clampV) {
-    return filterLevelT<false>(lv, s, t, true, clampU, clampV);
-}
-u32 sampleBilinearFallback(const TexLevel& lv, float s, float t, bool clampU, bool clampV) {
-    return filterLevelT<true>(lv, s, t, true, clampU, clampV);
+    return filterLevel(lv, s, t, true, clampU, clampV);
 }
 
 u32 mixLevels(u32 c, u32 cNext, int frac) {
@@ -222,57 +197,20 @@ u32 mixLevels(u32 c, u32 cNext, int frac) {
 }
 
 void Sampler::finalize() {
-    fn = pickSampleFn<false>(*this);
-    fallbackFn = pickSampleFn<true>(*this);
-}
-
-
-u64 SamplerJitModel::configKey(const GeState& st, u32 texFunc) {
-    // The parts of the reference's SamplerID a dump can vary (ComputeSamplerID); the bilinear and
-    // nearest routines of one configuration are compiled together, so the filter is not part of it.
-    const u32 fmt = st.TPF_format();
-    const bool clut = fmt >= 4 && fmt <= 7;
-    u64 k = fmt;
-    k = k << 2 | (clut ? st.CLUT_format() : 0);
-    k = k << 1 | (st.TMODE_swizzle() ? 1 : 0);
-    k = k << 1 | (clut && st.TMODE_multiclut() ? 1 : 0);
-    k = k << 1 | (st.TWRAP_uclamp() ? 1 : 0);
-    k = k << 1 | (st.TWRAP_vclamp() ? 1 : 0);
-    k = k << 1 | (st.TFUNC_rgba() ? 1 : 0);
-    k = k << 1 | (st.TFUNC_double() ? 1 : 0);
-    k = k << 3 | (texFunc & 7);
-    k = k << 4 | (st.TSIZE_wlog(0) & 15);
-    k = k << 4 | (st.TSIZE_hlog(0) & 15);
-    k = k << 1 | ((st.TFILTER_min() & 4) && st.TMODE_maxlevel() > 0 ? 1 : 0);
-    k = k << 1 | (st.TBW_width(0) == (1u << std::min<u32>(st.TSIZE_wlog(0), 15)) ? 1 : 0);
-    k = k << 1 | (clut && st.CLUT_mask() != 0xFF ? 1 : 0);
-    k = k << 1 | (clut && st.CLUT_shift() != 0 ? 1 : 0);
-    k = k << 1 | (clut && st.CLUT_start() != 0 ? 1 : 0);
-    return k;
-}
-
-bool SamplerJitModel::contains(const std::vector<u64>& v, u64 k) {
-    return std::find(v.begin(), v.end(), k) != v.end();
-}
-
-void SamplerJitModel::reset() {
-    compiled_.clear();
-    queued_.clear();
-}
-
-bool SamplerJitModel::drawUsesFallback(const GeState& st, bool white) {
-    // Setting up the draw's own configuration compiles it, and with it everything queued.
-    const u64 own = configKey(st, st.TFUNC_func());
-    if (!contains(compiled_, own)) {
-        compiled_.insert(compiled_.end(), queued_.begin(), queued_.end());
-        queued_.clear();
-        compiled_.push_back(own);
+    if (fixedChoice && fixed.frac == 0 && fixed.level < std::max(levelCount, 1)) {
+        const int k = (fixed.linear ? 4 : 0) | (clampU ? 2 : 0) | (clampV ? 1 : 0);
+        static constexpr SampleFn table[8] = {
+            &sampleFixedT<false, false, false>, &sampleFixedT<false, false, true>,
+            &sampleFixedT<false, true, false>,  &sampleFixedT<false, true, true>,
+            &sampleFixedT<true, false, false>,  &sampleFixedT<true, false, true>,
+            &sampleFixedT<true, true, false>,   &sampleFixedT<true, true, true>,
+        };
+        fn = table[k];
+    } else if (fixedChoice) {
+        fn = &sampleFixedGeneral;
+    } else {
+        fn = &sampleDynamic;
     }
-    if (!white || st.TFUNC_func() != 0) return false;  // only white MODULATE draws are rewritten
-    const u64 replace = configKey(st, 3);
-    if (contains(compiled_, replace)) return false;
-    if (!contains(queued_, replace)) queued_.push_back(replace);
-    return true;
 }
 
 }  // namespace ge::soft

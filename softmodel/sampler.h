@@ -65,10 +65,6 @@ LevelChoice chooseLevel(const LodParams& p, int detail16);
 // the four texels are wrapped/clamped separately and weighted (16 − fu)(16 − fv), … >> 8.
 u32 sampleNearest(const TexLevel& lv, float s, float t, bool clampU, bool clampV);
 u32 sampleBilinear(const TexLevel& lv, float s, float t, bool clampU, bool clampV);
-// Bilinear as the reference renderer's C++ fallback sampler does it (Sampler.cpp
-// GetTexelCoordinatesQuadS/T): u0 = (trunc(s·w·256) − 128) >> 8, the 4-bit fraction of the same
-// value. Used where that renderer samples through its fallback (SamplerJitModel below).
-u32 sampleBilinearFallback(const TexLevel& lv, float s, float t, bool clampU, bool clampV);
 // (c_next·frac + c·(16 − frac)) >> 4 per channel.
 u32 mixLevels(u32 c, u32 cNext, int frac);
 
@@ -83,43 +79,12 @@ struct Sampler {
 
     using SampleFn = u32 (*)(const Sampler&, float s, float t, float lod, float w);
     SampleFn fn = nullptr;
-    SampleFn fallbackFn = nullptr;  // the same with sampleBilinearFallback's truncating position
 
     u32 sample(float s, float t, float lodValue, float w) const { return fn(*this, s, t, lodValue, w); }
-    // The reference renderer's C++ fallback sampler (see SamplerJitModel).
-    u32 sampleFallback(float s, float t, float lodValue, float w) const {
-        return fallbackFn(*this, s, t, lodValue, w);
-    }
 
-    // Picks the specialised routines; call after levels, lod, clamp flags and the fixed choice
+    // Picks the specialised routine; call after levels, lod, clamp flags and the fixed choice
     // are set.
     void finalize();
-};
-
-// Which sampler the reference renderer runs for a draw. PPSSPP's software GE on x86-64 samples
-// through JIT-compiled routines, one per sampler configuration (SamplerID: formats, swizzle,
-// clamp, size, texture function, ...), compiled when a draw's state is set up. When a draw's
-// vertex colours are all white (RGB 255, and alpha 255 if the texture alpha is used), its
-// texture function MODULATE is "optimised" to REPLACE (Rasterizer.cpp DetectStateOptimizations /
-// ApplyStateOptimizations) and the REPLACE configuration is looked up *without* compiling
-// (Sampler::GetLinearFunc(id, nullptr)): if it was not compiled before, the draw samples through
-// the C++ fallback (SampleLinear), whose bilinear position truncates where the JIT rounds, and the
-// configuration is queued; the queue is compiled the next time a draw sets up a configuration
-// not compiled yet (SamplerJitCache::GetByID). The cache starts empty with the replay.
-// This model keeps the compiled and queued configurations of one replay, in draw order.
-class SamplerJitModel {
-public:
-    void reset();
-    // Call once per textured draw, in submission order, with the draw's state; `white`: whether
-    // its vertex colours allow the REPLACE optimisation (see above). Returns true when the draw
-    // samples through the C++ fallback (never for texture functions other than MODULATE).
-    bool drawUsesFallback(const GeState& st, bool white);
-
-private:
-    static u64 configKey(const GeState& st, u32 texFunc);
-    static bool contains(const std::vector<u64>& v, u64 k);
-    std::vector<u64> compiled_;
-    std::vector<u64> queued_;
 };
 
 // Which levels a draw needs decoded, given the sampler parameters (before finalize()):
