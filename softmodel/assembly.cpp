@@ -1,6 +1,7 @@
-// Rectangle detection of primitive assembly (see assembly.h).
+// Rectangle detection and rectangle corners of primitive assembly (see assembly.h).
 #include "softmodel/assembly.h"
 
+#include <algorithm>
 #include <cstring>
 
 namespace ge::soft {
@@ -86,6 +87,22 @@ bool fanQuadAsRect(const RectDetect& rd, const ClipVertex* const d[4], int& tl, 
     // Matching texture coordinates along the edges, and texture not mirrored against the screen.
     if (ptl.s != pbl.s || ptr.s != pbr.s || ptl.t != ptr.t || pbl.t != pbr.t) return false;
     return ptl.t < pbr.t && ptl.y < pbr.y && ptl.s < pbr.s && ptl.x < pbr.x;
+}
+
+ScreenVertex rectangleCorner(const ScreenVertex& v0, const ScreenVertex& v1, int fx, int fy) {
+    ScreenVertex c = v1;
+    c.x = fx ? std::max(v0.x, v1.x) : std::min(v0.x, v1.x);
+    c.y = fy ? std::max(v0.y, v1.y) : std::min(v0.y, v1.y);
+    c.w = 1.0f;
+    const bool left = v0.x < v1.x, above = v0.y < v1.y;
+    const ScreenVertex* sFrom;
+    const ScreenVertex* tFrom;
+    if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
+    else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
+    else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
+    else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
+    c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
+    return c;
 }
 
 }  // namespace ge::soft

@@ -406,27 +406,9 @@ struct SoftRenderer::Impl {
     // Rectangles with texture projection are drawn as two triangles (§8.2), corners textured by
     // the orientation table, colour/Z/fog of the second vertex.
     void rectangleAsTriangles(const ScreenVertex& v0, const ScreenVertex& v1) {
-        const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
-        const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-        if (xl == xr || yt == yb) return;
-        const bool left = v0.x < v1.x, above = v0.y < v1.y;
-        // Corner (fx, fy) ∈ {0, 1}²: which vertex gives s (and q) and which gives t.
-        auto corner = [&](int fx, int fy) {
-            ScreenVertex c = v1;
-            c.x = fx ? xr : xl;
-            c.y = fy ? yb : yt;
-            c.w = 1.0f;
-            const ScreenVertex* sFrom;
-            const ScreenVertex* tFrom;
-            if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
-            else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
-            else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
-            else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
-            c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
-            return c;
-        };
-        const u32 tl = pushNew(corner(0, 0)), tr = pushNew(corner(1, 0));
-        const u32 bl = pushNew(corner(0, 1)), br = pushNew(corner(1, 1));
+        if (v0.x == v1.x || v0.y == v1.y) return;
+        const u32 tl = pushNew(rectangleCorner(v0, v1, 0, 0)), tr = pushNew(rectangleCorner(v0, v1, 1, 0));
+        const u32 bl = pushNew(rectangleCorner(v0, v1, 0, 1)), br = pushNew(rectangleCorner(v0, v1, 1, 1));
         addPrim(PrimKind::Triangle, tl, tr, bl, bl);
         addPrim(PrimKind::Triangle, tr, br, bl, bl);
     }
@@ -441,86 +423,14 @@ struct SoftRenderer::Impl {
         return true;
     }
 
-    // Assembles `seq` (indices into cverts, in draw order) as `prim`; what does not complete a
-    // primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (§3.2, §8.11).
+    // Assembles `seq` (indices into cverts, in draw order) as `prim` (assembly.h); what does not
+    // complete a primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (§3.2,
+    // §8.11).
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-        const size_t n = seq.size();
-        std::vector<u32> keep;
-        switch (prim) {
-        case GE_PRIM_POINTS:
-            for (size_t i = 0; i < n; ++i) point(seq[i]);
-            break;
-        case GE_PRIM_LINES:
-            for (size_t i = 0; i + 1 < n; i += 2) line(seq[i], seq[i + 1]);
-            if (n & 1) keep.push_back(seq[n - 1]);
-            break;
-        case GE_PRIM_LINE_STRIP:
-            for (size_t i = 1; i < n; ++i) line(seq[i - 1], seq[i]);
-            if (n) keep.push_back(seq[n - 1]);
-            break;
-        case GE_PRIM_TRIANGLES:
-            for (size_t i = 0; i + 2 < n; i += 3) triangle(seq[i], seq[i + 1], seq[i + 2]);
-            for (size_t i = n - n % 3; i < n; ++i) keep.push_back(seq[i]);
-            break;
-        case GE_PRIM_TRIANGLE_STRIP: {
-            // A fresh, unculled strip of an even number of vertices is first read as quads of
-            // four, each drawn as a rectangle while it is one (assembly.h stripQuadAsRect); from the first
-            // quad that is not, the rest is an ordinary strip.
-            size_t start = 0;
-            if (rectDetect.allowed && !cullOn && !stripOdd && n >= 4 && (n & 1) == 0) {
-                for (size_t base = 0; base + 2 < n; base += 2) {
-                    const u32 quad[4] = {seq[base], seq[base + 1], seq[base + 2], seq[base + 3]};
-                    u32 tl = 0, br = 0;
-                    if (!quadAsRect(false, quad, tl, br)) break;
-                    rectangle(tl, br);
-                    start = base + 2;
-                    if (base + 4 >= n) start = n;
-                }
-            }
-            // Every second triangle is wound the other way round; the newest vertex provokes.
-            // The reference renderer keeps strip vertices in a ring of three slots (vertex i in
-            // slot i mod 3) and rasterises the slots in order (TransformUnit::SubmitPrimitive),
-            // which decides the order of its float attribute sums (raster.cpp). (After quads drawn
-            // as rectangles, the newest upstream restarts the ring with the last two vertices in
-            // slots 2 and 0; the reference renders match counting from the strip start better.)
-            for (size_t i = start + 2; i < n; ++i) {
-                u32 ring[3];
-                for (size_t k = i - 2; k <= i; ++k) ring[k % 3] = seq[k];
-                if (!stripOdd) triangle(seq[i - 2], seq[i - 1], seq[i], ring);
-                else triangle(seq[i - 1], seq[i - 2], seq[i], ring);
-                stripOdd = !stripOdd;
-            }
-            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
-            break;
-        }
-        case GE_PRIM_TRIANGLE_FAN:
-            if (rectDetect.allowed && !cullOn && n == 4) {
-                u32 tl = 0, br = 0;
-                const u32 quad[4] = {seq[0], seq[1], seq[2], seq[3]};
-                if (quadAsRect(true, quad, tl, br)) {
-                    rectangle(tl, br);
-                    if (keepPending) keep = {seq[0], seq[3]};
-                    break;
-                }
-            }
-            // The reference's ring for fans: the centre in slot 0, odd-numbered vertices in slot 1,
-            // even-numbered ones in slot 2 (see the strip case).
-            for (size_t i = 2; i < n; ++i) {
-                const u32 ring[3] = {seq[0], (i & 1) ? seq[i] : seq[i - 1], (i & 1) ? seq[i - 1] : seq[i]};
-                triangle(seq[0], seq[i - 1], seq[i], ring);
-            }
-            if (n >= 2) keep = {seq[0], seq[n - 1]};
-            else if (n == 1) keep = {seq[0]};
-            break;
-        case GE_PRIM_RECTANGLES:
-            for (size_t i = 0; i + 1 < n; i += 2) rectangle(seq[i], seq[i + 1]);
-            if (n & 1) keep.push_back(seq[n - 1]);
-            break;
-        default: break;
-        }
+        assemblePrimitives(prim, seq, rectDetect.allowed && !cullOn, stripOdd, *this, keepScratch);
         if (keepPending) {
             pending.clear();
-            for (u32 k : keep) pending.push_back(cverts[k]);
+            for (u32 k : keepScratch) pending.push_back(cverts[k]);
         }
     }
 
@@ -608,6 +518,7 @@ struct SoftRenderer::Impl {
     std::vector<u32> indices, seq;
     // PRIM type 7 continuation: the transformed vertices still open, and the strip parity.
     std::vector<ClipVertex> pending;
+    std::vector<u32> keepScratch;  // assemble's continuation indices (reused)
     bool stripOdd = false;
     // Strip/fan-as-rectangle detection (assembly.h) for the PRIM being assembled: allowed only for
     // a fresh PRIM (no open vertices), with what the comparison needs from the state.

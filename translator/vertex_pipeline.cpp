@@ -294,27 +294,10 @@ void VertexPipeline::rectangle(u32 ia, u32 ib) {
 }
 
 void VertexPipeline::rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
-    // Rectangles with texture projection are two triangles (ref §8.2), as in the software model:
-    // corners textured by the orientation table, colour/Z/fog of the second vertex.
-    const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
-    const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    if (xl == xr || yt == yb) return;
-    const bool left = v0.x < v1.x, above = v0.y < v1.y;
-    auto corner = [&](int fx, int fy) {
-        soft::ScreenVertex c = v1;
-        c.x = fx ? xr : xl;
-        c.y = fy ? yb : yt;
-        c.w = 1.0f;
-        const soft::ScreenVertex* sFrom;
-        const soft::ScreenVertex* tFrom;
-        if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
-        else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
-        else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
-        else sFrom = fx ? &v0 : &v1, tFrom = fy ? &v0 : &v1;
-        c.s = sFrom->s, c.q = sFrom->q, c.t = tFrom->t;
-        return c;
-    };
-    const soft::ScreenVertex tl = corner(0, 0), tr = corner(1, 0), bl = corner(0, 1), br = corner(1, 1);
+    // Rectangles with texture projection are two triangles (ref §8.2), as in the software model.
+    if (v0.x == v1.x || v0.y == v1.y) return;
+    const soft::ScreenVertex tl = soft::rectangleCorner(v0, v1, 0, 0), tr = soft::rectangleCorner(v0, v1, 1, 0);
+    const soft::ScreenVertex bl = soft::rectangleCorner(v0, v1, 0, 1), br = soft::rectangleCorner(v0, v1, 1, 1);
     emitTriangle(tl, tr, bl, bl, 0);
     emitTriangle(tr, br, bl, bl, 1);
 }
@@ -351,76 +334,10 @@ void VertexPipeline::point(u32 ia) {
 }
 
 void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-    const size_t n = seq.size();
+    // The software model's walk (softmodel/assembly.h), so both backends build the same
+    // primitives in the same vertex order.
     std::vector<u32> keep;
-    switch (prim) {
-        case GE_PRIM_POINTS:
-            for (size_t i = 0; i < n; ++i) point(seq[i]);
-            break;
-        case GE_PRIM_LINES:
-            for (size_t i = 0; i + 1 < n; i += 2) line(seq[i], seq[i + 1]);
-            if (n & 1) keep.push_back(seq[n - 1]);
-            break;
-        case GE_PRIM_LINE_STRIP:
-            for (size_t i = 1; i < n; ++i) line(seq[i - 1], seq[i]);
-            if (n) keep.push_back(seq[n - 1]);
-            break;
-        case GE_PRIM_TRIANGLES:
-            for (size_t i = 0; i + 2 < n; i += 3) triangle(seq[i], seq[i + 1], seq[i + 2]);
-            for (size_t i = n - n % 3; i < n; ++i) keep.push_back(seq[i]);
-            break;
-        case GE_PRIM_TRIANGLE_STRIP: {
-            // As the software model: a fresh, unculled strip of an even number of vertices is
-            // first read as quads, each drawn as a rectangle while it is one (soft::stripQuadAsRect).
-            size_t start = 0;
-            if (rectDetect_.allowed && !vs_.cull && !stripOdd_ && n >= 4 && (n & 1) == 0) {
-                for (size_t base = 0; base + 2 < n; base += 2) {
-                    const u32 quad[4] = {seq[base], seq[base + 1], seq[base + 2], seq[base + 3]};
-                    u32 tl = 0, br = 0;
-                    if (!quadAsRect(false, quad, tl, br)) break;
-                    rectangle(tl, br);
-                    start = base + 2;
-                    if (base + 4 >= n) start = n;
-                }
-            }
-            // Every second triangle is wound the other way round; the newest vertex provokes.
-            // Rasterised in the reference's ring order: vertex k of the strip in slot k mod 3
-            // (soft_renderer.cpp assemble).
-            for (size_t i = start + 2; i < n; ++i) {
-                u32 ring[3];
-                for (size_t k = i - 2; k <= i; ++k) ring[k % 3] = seq[k];
-                if (!stripOdd_) triangle(seq[i - 2], seq[i - 1], seq[i], ring);
-                else triangle(seq[i - 1], seq[i - 2], seq[i], ring);
-                stripOdd_ = !stripOdd_;
-            }
-            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) keep.push_back(seq[i]);
-            break;
-        }
-        case GE_PRIM_TRIANGLE_FAN:
-            // As the software model: a fresh, unculled fan of four vertices may be a rectangle.
-            if (rectDetect_.allowed && !vs_.cull && n == 4) {
-                const u32 quad[4] = {seq[0], seq[1], seq[2], seq[3]};
-                u32 tl = 0, br = 0;
-                if (quadAsRect(true, quad, tl, br)) {
-                    rectangle(tl, br);
-                    keep = {seq[0], seq[3]};
-                    break;
-                }
-            }
-            // Ring order of fans: centre in slot 0, odd vertices in slot 1, even ones in slot 2.
-            for (size_t i = 2; i < n; ++i) {
-                const u32 ring[3] = {seq[0], (i & 1) ? seq[i] : seq[i - 1], (i & 1) ? seq[i - 1] : seq[i]};
-                triangle(seq[0], seq[i - 1], seq[i], ring);
-            }
-            if (n >= 2) keep = {seq[0], seq[n - 1]};
-            else if (n == 1) keep = {seq[0]};
-            break;
-        case GE_PRIM_RECTANGLES:
-            for (size_t i = 0; i + 1 < n; i += 2) rectangle(seq[i], seq[i + 1]);
-            if (n & 1) keep.push_back(seq[n - 1]);
-            break;
-        default: break;
-    }
+    soft::assemblePrimitives(prim, seq, rectDetect_.allowed && !vs_.cull, stripOdd_, *this, keep);
     if (keepPending) {
         pending_.clear();
         for (u32 k : keep) pending_.push_back(cverts_[k]);

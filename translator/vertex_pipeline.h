@@ -82,6 +82,9 @@ public:
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
+    // Primitive callbacks of soft::assemblePrimitives (the walk shared with the software model).
+    template <class Sink>
+    friend void soft::assemblePrimitives(GePrimType, const std::vector<u32>&, bool, bool&, Sink&, std::vector<u32>&);
     void triangle(u32 a, u32 b, u32 c, const u32* ring = nullptr);
     void rectangle(u32 a, u32 b);
     void line(u32 a, u32 b);
