@@ -89,6 +89,38 @@ bool fanQuadAsRect(const RectDetect& rd, const ClipVertex* const d[4], int& tl, 
     return ptl.t < pbr.t && ptl.y < pbr.y && ptl.s < pbr.s && ptl.x < pbr.x;
 }
 
+void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std::vector<ClipVertex>& out,
+                       std::vector<u32>& seq) {
+    const bool through = st.isThrough();
+    const bool projective = !through && st.TMAP_mode() == 1;
+    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
+    auto to16 = [](float v) {
+        float t = v * 16.0f;
+        if (!(t > -1048576.0f)) t = -1048576.0f;  // also NaN
+        if (t > 1048576.0f) t = 1048576.0f;
+        return int(t);
+    };
+    out.resize(in.size());
+    seq.clear();
+    for (size_t i = 0; i < in.size(); ++i) {
+        const ImmVertex& iv = in[i];
+        ClipVertex& cv = out[i];
+        cv = ClipVertex{};
+        ScreenVertex& sv = cv.sv;
+        sv.x = to16(iv.x);
+        sv.y = to16(iv.y);
+        sv.z = iv.z;
+        sv.s = through ? iv.s * invW : iv.s;
+        sv.t = through ? iv.t * invH : iv.t;
+        sv.q = projective ? iv.q : 1.0f;
+        sv.w = 1.0f;
+        sv.fog = float(iv.fog) / 255.0f;
+        std::memcpy(sv.color, iv.color, 4);
+        std::memcpy(sv.secondary, iv.secondary, 3);
+        seq.push_back(u32(i));
+    }
+}
+
 ScreenVertex rectangleCorner(const ScreenVertex& v0, const ScreenVertex& v1, int fx, int fy) {
     ScreenVertex c = v1;
     c.x = fx ? std::max(v0.x, v1.x) : std::min(v0.x, v1.x);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hle/ge_state.h"
+#include "hle/renderer.h"
 #include "softmodel/transform.h"
 
 namespace ge::soft {
@@ -34,6 +35,14 @@ bool stripQuadAsRect(const RectDetect& rd, const ClipVertex* const q[4], int& tl
 // A fan of exactly four vertices (centre first) forming a rectangle with texture growing towards
 // the bottom-right: true with `tl`/`br` as above.
 bool fanQuadAsRect(const RectDetect& rd, const ClipVertex* const q[4], int& tl, int& br);
+
+// Immediate-mode vertices (CMD_X2 … CMD_AP2) as clip vertices, already in drawing coordinates
+// (no transform, lighting or clipping): positions to 1/16 pixel (kept within ±65536 pixels),
+// through-mode texels divided by the level-0 size (§8.10), Q only with texture projection, the
+// fog byte as a factor (fogToByte gives the byte back). `out` is resized to the vertices and
+// `seq` receives their draw order.
+void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std::vector<ClipVertex>& out,
+                       std::vector<u32>& seq);
 
 // Corner (fx, fy) ∈ {0, 1}² (0: left / top) of the rectangle v0–v1 when it is drawn as two
 // triangles (texture projection, §8.2): the corner's position, colour/Z/fog of v1, W = 1, and s

@@ -581,7 +581,8 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     VertexReader probe(I.mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (§3.2).
     const bool hasNormal = probe.hasNormal() || st.LTE_on();
-    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
+    TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
+    if (getenv("XPRE") && probe.hasUV()) { ts.su = 1; ts.sv = 1; ts.tu = 0; ts.tv = 0; }
     I.cverts.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
         transformVertex(ts, tess.verts[i], I.cverts[i]);
@@ -626,35 +627,8 @@ void SoftRenderer::drawImmediate(const ImmPacket& p) {
     TransformState ts;
     ts.through = true;
     const bool through = st.isThrough();
-    const bool projective = !through && st.TMAP_mode() == 1;
-    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
-    I.cverts.resize(p.vertices.size());
     std::vector<u32>& seq = I.seq;
-    seq.clear();
-    for (size_t i = 0; i < p.vertices.size(); ++i) {
-        const ImmVertex& iv = p.vertices[i];
-        ClipVertex& cv = I.cverts[i];
-        cv = ClipVertex{};
-        ScreenVertex& sv = cv.sv;
-        auto to16 = [](float v) {
-            float t = v * 16.0f;
-            if (!(t > -1048576.0f)) t = -1048576.0f;
-            if (t > 1048576.0f) t = 1048576.0f;
-            return int(t);
-        };
-        sv.x = to16(iv.x);
-        sv.y = to16(iv.y);
-        sv.z = iv.z;
-        // Through mode: texels, divided by the level-0 size (§8.10); else normalised (S, T, Q).
-        sv.s = through ? iv.s * invW : iv.s;
-        sv.t = through ? iv.t * invH : iv.t;
-        sv.q = projective ? iv.q : 1.0f;
-        sv.w = 1.0f;
-        sv.fog = float(iv.fog) / 255.0f;  // byte 255 = no fog; fogToByte gives the byte back
-        std::memcpy(sv.color, iv.color, 4);
-        std::memcpy(sv.secondary, iv.secondary, 3);
-        seq.push_back(u32(i));
-    }
+    immediateVertices(st, p.vertices, I.cverts, seq);
     const bool textured = st.TME_on();
     RasterParams rp = makeRasterParams(st, true, textured);
     rp.fog = st.FGE_on() && !through;

@@ -434,35 +434,7 @@ void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, con
     // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
     ts_ = soft::TransformState{};
     ts_.through = true;
-    const bool through = st.isThrough();
-    const bool projective = !through && st.TMAP_mode() == 1;
-    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
-    cverts_.resize(p.vertices.size());
-    seq_.clear();
-    for (size_t i = 0; i < p.vertices.size(); ++i) {
-        const ImmVertex& iv = p.vertices[i];
-        soft::ClipVertex& cv = cverts_[i];
-        cv = soft::ClipVertex{};
-        soft::ScreenVertex& sv = cv.sv;
-        auto to16 = [](float v) {
-            float t = v * 16.0f;
-            if (!(t > -1048576.0f)) t = -1048576.0f;
-            if (t > 1048576.0f) t = 1048576.0f;
-            return int(t);
-        };
-        sv.x = to16(iv.x);
-        sv.y = to16(iv.y);
-        sv.z = iv.z;
-        // Through mode: texels divided by the level-0 size (ref §8.10); else normalised S, T, Q.
-        sv.s = through ? iv.s * invW : iv.s;
-        sv.t = through ? iv.t * invH : iv.t;
-        sv.q = projective ? iv.q : 1.0f;
-        sv.w = 1.0f;
-        sv.fog = float(iv.fog) / 255.0f;  // byte 255 = no fog; floor(f·256) gives the byte back
-        std::memcpy(sv.color, iv.color, 4);
-        std::memcpy(sv.secondary, iv.secondary, 3);
-        seq_.push_back(u32(i));
-    }
+    soft::immediateVertices(st, p.vertices, cverts_, seq_);
     const bool odd = stripOdd_;
     stripOdd_ = false;
     assemble(p.prim, seq_, false);
