@@ -58,7 +58,7 @@ void runAccuracy(const std::string& backend, const Floors& floors) {
     EXPECT_LE(median, floors.maxMedian);
 }
 
-TEST(FrametestAccuracy, SoftwareModel) { runAccuracy("soft", Floors{10, 18, 0.10}); }
-TEST(FrametestAccuracy, GlTranslator) { runAccuracy("gl", Floors{10, 18, 0.10}); }
+TEST(FrametestAccuracy, SoftwareModel) { runAccuracy("soft", Floors{16, 20, 0.025}); }
+TEST(FrametestAccuracy, GlTranslator) { runAccuracy("gl", Floors{16, 20, 0.025}); }
 
 }  // namespace
