@@ -5,7 +5,8 @@
 // Every output attribute is the same tensor-product combination of the control points:
 //   S(u, v) = Σa Σb Nu_a(u) · Nv_b(v) · P(first_u + a, first_v + b)
 // with Bernstein weights for Bezier (manual §5.1) and the cubic B-spline basis of the knot
-// vector for splines (manual §5.2.1).
+// vector for splines (manual §5.2.1), evaluated in the reference's arithmetic, including its
+// weights for a single patch open at both ends (see splineSpans).
 //
 // Layout of the output (follows PPSSPP, whose software renderer made the reference renders):
 // - Bezier: each patch is tessellated on its own into (divU+1)·(divV+1) vertices (edge vertices
@@ -41,45 +42,69 @@ void bezierDerivs(float t, float d[4]) {
     d[3] = 3.0f * t * t;
 }
 
-// Non-zero B-spline basis functions of degree p at u in span k (knots[k] ≤ u ≤ knots[k+1],
-// knots[k+1] > knots[k]): N[0..p] = N_{k−p,p} … N_{k,p}. The denominators are never zero because
-// the span has non-zero length (see splineKnots: spans 3 … n−1 are always [i−3, i−2]).
-void basisFuns(const std::vector<float>& U, int k, float u, int p, float N[4]) {
-    float left[4] = {}, right[4] = {};
-    N[0] = 1.0f;
-    for (int j = 1; j <= p; ++j) {
-        left[j] = u - U[size_t(k + 1 - j)];
-        right[j] = U[size_t(k + j)] - u;
-        float saved = 0.0f;
-        for (int r = 0; r < j; ++r) {
-            const float temp = N[r] / (right[r + 1] + left[j - r]);
-            N[r] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        N[j] = saved;
+// One spline patch's share of the knot vector, in the form the reference evaluates the cubic
+// basis (PPSSPP SplineCommon.cpp, Spline3DWeight: CalcKnots / CalcWeights): the three knots
+// before the patch's span [U[p+3], U[p+4]] and the reciprocals of the knot differences the
+// Cox–de Boor recursion divides by. The rounding of the weights depends on this form.
+struct SplineSpan {
+    float k0 = 0, k1 = 0, k2 = 0;        // U[p+1], U[p+2], U[p+3]
+    float r30 = 0, r41 = 0, r52 = 0;     // 1/(U[p+4]−U[p+1]), 1/(U[p+5]−U[p+2]), 1/(U[p+6]−U[p+3])
+    float r31 = 0, r42 = 0, r32 = 0;     // 1/(U[p+4]−U[p+2]), 1/(U[p+5]−U[p+3]), 1/(U[p+4]−U[p+3])
+};
+
+// Spans of the count − 3 patches of one direction. Every difference includes the patch's own
+// span of length 1 (splineKnots), so none is zero.
+std::vector<SplineSpan> splineSpans(int count, int knotType) {
+    std::vector<float> U;
+    splineKnots(count, knotType, U);
+    std::vector<SplineSpan> spans(size_t(std::max(count - 3, 0)));
+    for (size_t p = 0; p < spans.size(); ++p) {
+        SplineSpan& s = spans[p];
+        s.k0 = U[p + 1], s.k1 = U[p + 2], s.k2 = U[p + 3];
+        s.r30 = 1.0f / (U[p + 4] - U[p + 1]);
+        s.r41 = 1.0f / (U[p + 5] - U[p + 2]);
+        s.r52 = 1.0f / (U[p + 6] - U[p + 3]);
+        s.r31 = 1.0f / (U[p + 4] - U[p + 2]);
+        s.r42 = 1.0f / (U[p + 5] - U[p + 3]);
+        s.r32 = 1.0f / (U[p + 4] - U[p + 3]);
     }
+    // A single patch open at both ends: the reference sets 1/(U[5]−U[2]) for the open end (1/2,
+    // right when the start is closed) after the open start's value (1, the true one), so its
+    // weights are not the Bernstein ones: at t = 1/2 they are (1/8, 1/2, 1/4, 1/8) instead of
+    // (1/8, 3/8, 3/8, 1/8). Still a partition of unity with exact ends, so a flat patch stays
+    // flat, but its tessellated vertices sit at other places: GachiTora draws its button and
+    // speech-bubble text as such 4x4 splines, and only these weights reproduce the reference's
+    // bilinear texel fractions there (MSE 0.19 -> 0.016).
+    if (count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
+    return spans;
 }
 
-// Cubic spline basis for `count` control points at parameter patch + t (0 ≤ t ≤ 1).
-Basis1D splineBasis(const std::vector<float>& U, u32 patch, float t) {
-    Basis1D b;
-    const int k = int(patch) + 3;  // span [patch, patch + 1]
-    const float u = float(patch) + t;
-    b.first = patch;               // control points k−3 … k
-    basisFuns(U, k, u, 3, b.w);
-    // Derivative from the degree-2 functions: N'_{i,3} = 3·(N_{i,2}/(U[i+3]−U[i]) − N_{i+1,2}/(U[i+4]−U[i+1])).
-    float N2[4] = {};
-    basisFuns(U, k, u, 2, N2);  // N_{k−2,2}, N_{k−1,2}, N_{k,2}
-    auto n2 = [&](int i) -> float { return (i >= k - 2 && i <= k) ? N2[i - (k - 2)] : 0.0f; };
-    for (int a = 0; a < 4; ++a) {
-        const int i = k - 3 + a;
-        float v = 0.0f;
-        const float d0 = U[size_t(i + 3)] - U[size_t(i)], d1 = U[size_t(i + 4)] - U[size_t(i + 1)];
-        if (d0 != 0.0f) v += n2(i) / d0;
-        if (d1 != 0.0f) v -= n2(i + 1) / d1;
-        b.d[a] = 3.0f * v;
-    }
-    return b;
+// Cubic spline basis of patch `patch` at the global parameter t (patch ≤ t ≤ patch + 1), with
+// the reference's arithmetic: the de Boor ratios f_ij = (t − U_i)·r_ij, products of the
+// degree-1 and degree-2 terms, then the four weights and their derivatives.
+Basis1D splineBasis(const SplineSpan& s, u32 patch, float t) {
+    const float t0 = t - s.k0, t1 = t - s.k1, t2 = t - s.k2;
+    const float f30 = t0 * s.r30, f41 = t1 * s.r41, f52 = t2 * s.r52;
+    const float f31 = t1 * s.r31, f42 = t2 * s.r42, f32 = t2 * s.r32;
+    const float a = (1.0f - f30) * (1.0f - f31);
+    const float b = f31 * f41;
+    const float c = (1.0f - f41) * (1.0f - f42);
+    const float d = f42 * f52;
+    Basis1D r;
+    r.first = patch;  // control points patch … patch + 3
+    r.w[0] = a * (1.0f - f32);
+    r.w[1] = 1.0f - a - b + ((a + b + c - 1.0f) * f32);
+    r.w[2] = b + ((1.0f - b - c - d) * f32);
+    r.w[3] = d * f32;
+    const float i1 = (1.0f - f31) * (1.0f - f32);
+    const float i2 = f31 * (1.0f - f32) + (1.0f - f42) * f32;
+    const float i3 = f42 * f32;
+    const float g30 = i1 * s.r30, g41 = i2 * s.r41, g52 = i3 * s.r52;
+    r.d[0] = 3.0f * (0.0f - g30);
+    r.d[1] = 3.0f * (g30 - g41);
+    r.d[2] = 3.0f * (g41 - g52);
+    r.d[3] = 3.0f * (g52 - 0.0f);
+    return r;
 }
 
 Basis1D bezierBasis(u32 patch, float t) {
@@ -97,10 +122,11 @@ struct Surface {
     bool genNormals = false, reverseFace = false;
     u32 weightCount = 0;
     bool spline = false;
-    std::vector<float> knotsU, knotsV;
+    std::vector<SplineSpan> spansU, spansV;
 
-    Basis1D basisU(u32 patch, float t) const { return spline ? splineBasis(knotsU, patch, t) : bezierBasis(patch, t); }
-    Basis1D basisV(u32 patch, float t) const { return spline ? splineBasis(knotsV, patch, t) : bezierBasis(patch, t); }
+    // t: local parameter (Bezier); g: global parameter patch + t (spline).
+    Basis1D basisU(u32 patch, float t, float g) const { return spline ? splineBasis(spansU[patch], patch, g) : bezierBasis(patch, t); }
+    Basis1D basisV(u32 patch, float t, float g) const { return spline ? splineBasis(spansV[patch], patch, g) : bezierBasis(patch, t); }
     const DecodedVertex& cp(const Basis1D& bu, const Basis1D& bv, int a, int b) const {
         return (*cps)[size_t(bv.first + u32(b)) * ucount + bu.first + u32(a)];
     }
@@ -139,9 +165,10 @@ struct Surface {
         return acc;
     }
 
-    // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv).
-    DecodedVertex eval(u32 pu, float tu, u32 pv, float tv) const {
-        const Basis1D bu = basisU(pu, tu), bv = basisV(pv, tv);
+    // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv); splines weight
+    // by the global parameters (gu, gv) as the reference computes them.
+    DecodedVertex eval(u32 pu, float tu, float gu, u32 pv, float tv, float gv) const {
+        const Basis1D bu = basisU(pu, tu, gu), bv = basisV(pv, tv, gv);
         DecodedVertex out;
         float col[4] = {};
         for (int c = 0; c < 3; ++c) out.pos[c] = sum(bu, bv, [c](const DecodedVertex& p) { return p.pos[c]; });
@@ -178,7 +205,7 @@ struct Surface {
                 // inside the patch, which is the limit the surface approaches.
                 const float nu = tu < 0.5f ? tu + 1.0f / 64 : tu - 1.0f / 64;
                 const float nv = tv < 0.5f ? tv + 1.0f / 64 : tv - 1.0f / 64;
-                derivatives(basisU(pu, nu), basisV(pv, nv), du, dv);
+                derivatives(basisU(pu, nu, float(pu) + nu), basisV(pv, nv, float(pv) + nv), du, dv);
                 n[0] = du[1] * dv[2] - du[2] * dv[1];
                 n[1] = du[2] * dv[0] - du[0] * dv[2];
                 n[2] = du[0] * dv[1] - du[1] * dv[0];
@@ -278,8 +305,8 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
     s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));
     if (p.spline) {
-        splineKnots(int(ucount), int(p.uknot & 3), s.knotsU);
-        splineKnots(int(vcount), int(p.vknot & 3), s.knotsV);
+        s.spansU = splineSpans(int(ucount), int(p.uknot & 3));
+        s.spansV = splineSpans(int(vcount), int(p.vknot & 3));
     }
 
     out.verts.reserve(size_t(total));
@@ -288,14 +315,16 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     auto local = [](u32 i, u32 div, float inv) { return i == div ? 1.0f : float(i) * inv; };
 
     if (p.spline) {
+        // As the reference: the weights at the global parameter (step index)·(1/div), the
+        // generated texture coordinates patch + (step in patch)·(1/div).
         const u32 nu = patchesU * divU, nv = patchesV * divV;
         for (u32 j = 0; j <= nv; ++j) {
             const u32 pv = std::min(j / divV, patchesV - 1);
-            const float tv = local(j - pv * divV, divV, invV);
+            const float tv = float(j - pv * divV) * invV, gv = float(j) * invV;
             for (u32 i = 0; i <= nu; ++i) {
                 const u32 pu = std::min(i / divU, patchesU - 1);
-                const float tu = local(i - pu * divU, divU, invU);
-                out.verts.push_back(s.eval(pu, tu, pv, tv));
+                const float tu = float(i - pu * divU) * invU, gu = float(i) * invU;
+                out.verts.push_back(s.eval(pu, tu, gu, pv, tv, gv));
             }
         }
         if (out.prim == GE_PRIM_POINTS) {
@@ -310,7 +339,10 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
         for (u32 pu = 0; pu < patchesU; ++pu) {
             const u32 base = u32(out.verts.size());
             for (u32 j = 0; j <= divV; ++j)
-                for (u32 i = 0; i <= divU; ++i) out.verts.push_back(s.eval(pu, local(i, divU, invU), pv, local(j, divV, invV)));
+                for (u32 i = 0; i <= divU; ++i) {
+                    const float tu = local(i, divU, invU), tv = local(j, divV, invV);
+                    out.verts.push_back(s.eval(pu, tu, tu, pv, tv, tv));
+                }
             if (out.prim != GE_PRIM_POINTS) appendGridIndices(base, divU, divV, p.patchPrim, out.indices);
         }
     if (out.prim == GE_PRIM_POINTS)

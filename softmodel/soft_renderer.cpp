@@ -581,8 +581,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     VertexReader probe(I.mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (§3.2).
     const bool hasNormal = probe.hasNormal() || st.LTE_on();
-    TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
-    if (getenv("XPRE") && probe.hasUV()) { ts.su = 1; ts.sv = 1; ts.tu = 0; ts.tv = 0; }
+    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
     I.cverts.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
         transformVertex(ts, tess.verts[i], I.cverts[i]);

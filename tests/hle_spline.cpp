@@ -179,19 +179,46 @@ TEST(Spline, ColoursAndUVsInterpolate) {
     }
 }
 
-TEST(Spline, OpenSingleSplinePatchEqualsBezier) {
+TEST(Spline, OpenSingleSplinePatchHasTheReferenceWeights) {
+    // One patch open at both ends would be the Bezier patch (knots 0,0,0,0,1,1,1,1), but the
+    // reference computes 1/(U[5]−U[2]) as 1/2 instead of 1 there (GachiTora's text splines):
+    // at t = 1/2 the weights are (1/8, 1/2, 1/4, 1/8), not (1/8, 3/8, 3/8, 1/8); at t = 1/4
+    // (27/64, 30/64, 6/64, 1/64). Control x = 0, 1, 2, 3 along u.
     Memory mem;
     GeState st;
-    writeGrid(mem, 4, 4, bumpy);
-    TessOutput bez, spl;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 3), bez));
-    PatchPacket p = patch(true, 4, 4, 3);
+    writeGrid(mem, 4, 4, flat);
+    PatchPacket p = patch(true, 4, 4, 4);
     p.uknot = p.vknot = 3;
+    TessOutput spl;
     ASSERT_TRUE(tessellatePatch(mem, st, p, spl));
-    ASSERT_EQ(spl.verts.size(), bez.verts.size());
-    for (size_t i = 0; i < bez.verts.size(); ++i)
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(spl.verts[i].pos[c], bez.verts[i].pos[c], 1e-5f) << i;
+    ASSERT_EQ(spl.verts.size(), 25u);
+    EXPECT_EQ(spl.verts[0].pos[0], 0.0f);
+    EXPECT_EQ(spl.verts[1].pos[0], 0.703125f);   // 30/64 + 2·6/64 + 3/64; Bezier: 0.75
+    EXPECT_EQ(spl.verts[2].pos[0], 1.375f);      // 1/2 + 2/4 + 3/8; Bezier: 1.5
+    EXPECT_EQ(spl.verts[4].pos[0], 3.0f);        // the ends stay exact
+    EXPECT_EQ(spl.verts[2 * 5].pos[1], 1.375f);  // the same along v
+    EXPECT_EQ(spl.verts[24].pos[1], 3.0f);
+    // Same triangles as the Bezier patch.
+    TessOutput bez;
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 4), bez));
     EXPECT_EQ(spl.indices, bez.indices);
+}
+
+TEST(Spline, TwoOpenSplinePatchesFollowTheKnotVector) {
+    // 5 control points open at both ends: knots 0,0,0,0,1,2,2,2,2. At t = 1/2:
+    // N = ((1−t)³, …) = (1/8, 19/32, 1/4, 1/32); at the inner knot t = 1: (1/4, 1/2, 1/4) on
+    // control points 1…3. x = control index.
+    Memory mem;
+    GeState st;
+    writeGrid(mem, 5, 4, flat);
+    PatchPacket p = patch(true, 5, 4, 2);
+    p.uknot = p.vknot = 3;
+    TessOutput out;
+    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_EQ(out.verts.size(), 5u * 3u);
+    EXPECT_EQ(out.verts[1].pos[0], 1.1875f);  // 19/32 + 2/4 + 3/32
+    EXPECT_EQ(out.verts[2].pos[0], 2.0f);     // 1/4 + 2/2 + 3/4
+    EXPECT_EQ(out.verts[4].pos[0], 4.0f);
 }
 
 TEST(Spline, ClosedUniformSplineStartsAtTheBlendOfThreePoints) {
