@@ -395,7 +395,7 @@ struct SoftRenderer::Impl {
             ++stats.discarded;
             return;
         }
-        if (!ts->through && ts->texMap == 1) {
+        if (ts->rectAsTriangles) {
             rectangleAsTriangles(v[0]->sv, v[1]->sv);
             return;
         }

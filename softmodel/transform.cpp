@@ -112,6 +112,15 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     const u32 map = st.TMAP_mode();
     ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (§3.8)
     ts.projSource = int(st.TMAP_proj());
+    // A texture-projection rectangle is drawn as triangles (§8.2) — unless the texture matrix
+    // gives Q = 1 for every vertex: its Q column is zero for X and Y, for Z too (or the source is
+    // UV, whose Z is 0), and its translation Q is exactly 1. Then the rectangle keeps the
+    // rectangle walk, as PPSSPP's software renderer does (Rasterizer.cpp ComputeRasterizerState
+    // clears textureProj in that case). NFS Carbon draws its HUD this way; the rectangle's centre
+    // sampling puts the texel columns where the reference has them.
+    const bool qIsOne = ts.tgen[2] == 0.0f && ts.tgen[5] == 0.0f && (ts.tgen[8] == 0.0f || ts.projSource == 1) &&
+                        ts.tgen[11] == 1.0f;
+    ts.rectAsTriangles = !ts.through && ts.texMap == 1 && !qIsOne;
     ts.su = st.SU_value(), ts.sv = st.SV_value(), ts.tu = st.TU_value(), ts.tv = st.TV_value();
 
     ts.fog = st.FGE_on();

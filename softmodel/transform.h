@@ -32,6 +32,9 @@ struct TransformState {
     int offX16 = 0, offY16 = 0;  // OFFSETX/OFFSETY in 1/16 pixel
     int texMap = 0;              // 0 UV, 1 projection (TGEN), 2 shade mapping (3 behaves as 0)
     int projSource = 0;          // TMAP bits 9..8
+    // Transform-mode rectangles drawn as two triangles: texture projection whose Q can vary over
+    // the rectangle (see makeTransformState).
+    bool rectAsTriangles = false;
     float su = 1, sv = 1, tu = 0, tv = 0;
     float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 size (through-mode texel coordinates)
     bool fog = false;

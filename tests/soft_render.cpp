@@ -283,6 +283,57 @@ TEST(SoftRender, StripQuadDrawnAsRectangle) {
     EXPECT_GT(blended & 0xFF, 0u);           // with a little red
 }
 
+TEST(SoftRender, ProjectionStripWithQOneDrawnAsRectangle) {
+    // Projection mapping (TMAP mode 1) whose texture matrix gives Q = 1 everywhere: the reference
+    // renderer (PPSSPP's, Rasterizer.cpp ComputeRasterizerState) then treats the texture as not
+    // projected, so a transform-mode strip quad stays a rectangle sampled at pixel centres (NFS
+    // Carbon's HUD). With Q = 2 (S and T doubled to match) it becomes two triangles sampled 1/16
+    // pixel earlier. Bilinear 1:1 mapping of a red|green texture tells the two apart.
+    auto build = [](Scene& s, float q) {
+        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
+        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+        s.b.enable(GE_CMD_TME, true);
+        s.b.texMode(GE_TFMT_8888, 0, false);
+        s.b.setTexture(0, kFb2, 64, 64, 64);
+        s.b.texFunc(3, true);
+        s.b.texFilter(1, 1);
+        const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        s.b.setMatrix(GeMatrix::World, id);
+        s.b.setMatrix(GeMatrix::View, id);
+        s.b.setMatrix(GeMatrix::Proj, id);
+        // Viewport scale 1: drawing x = X + 2048 − 1808, y = Y + 2048 − 1912.
+        s.b.cmdf(GE_CMD_SX, 1), s.b.cmdf(GE_CMD_SY, 1);
+        // TGEN from (U, V, 0): S = q·U, T = q·V, Q = q.
+        const float tgen[12] = {q, 0, 0, 0, q, 0, 0, 0, 0, 0, 0, q};
+        s.b.setMatrix3x4(GeMatrix::TexGen, tgen);
+        s.b.texMapMode(1, 1);
+        constexpr u32 vtype = vt::TC_F | vt::COL_8888 | vt::POS_F;
+        auto corner = [&](float x, float y) {
+            BuildVertex v;
+            v.x = x - 140, v.y = y - 36, v.z = 0;
+            v.u = x / 64, v.v = y / 64;
+            v.color = 0xFFFFFFFF;
+            return v;
+        };
+        BuildVertex v[4] = {corner(0, 0), corner(0, 64), corner(64, 0), corner(64, 64)};  // TL, BL, TR, BR
+        auto bytes = packVertices(vtype, v, 4);
+        s.b.drawArrayData(GE_PRIM_TRIANGLE_STRIP, vtype, 4, nullptr, bytes.data());
+    };
+    Scene rect, tris;
+    build(rect, 1);
+    build(tris, 2);
+    auto a = rect.run(1), b = tris.run(1);
+    EXPECT_EQ(Scene::pixel(a, kFb, 100, 100), 0x0000FFu);  // the quad starts at (100, 100)
+    EXPECT_EQ(Scene::pixel(a, kFb, 131, 130), 0x0000FFu);
+    EXPECT_EQ(Scene::pixel(a, kFb, 132, 130), 0x00FF00u);
+    const u32 blended = Scene::pixel(b, kFb, 132, 130);
+    EXPECT_NE(blended, 0x00FF00u);
+    EXPECT_GT((blended >> 8) & 0xFF, 200u);  // mostly green
+    EXPECT_GT(blended & 0xFF, 0u);           // with a little red
+}
+
 TEST(SoftRender, FanQuadDrawnAsRectangle) {
     // Same idea for a fresh 4-vertex fan TL, TR, BR, BL (the reference's DetectRectangleFromFan):
     // drawn as a rectangle it samples pixel centres, so the first green column is pure green.

@@ -434,3 +434,27 @@ TEST(SoftClip, IntersectionInterpolatedFromOutsideVertex) {
     // (a, a→b, b→c, c): the a→b point comes from b (outside) toward a.
     EXPECT_EQ(out[1].sv.color[0], 84);
 }
+
+TEST(SoftTransform, ProjectionRectangleKeepsRectangleWalkWhenQIsOne) {
+    // A transform-mode rectangle with projection mapping is drawn as two triangles (§8.2) unless
+    // the texture matrix makes Q = 1 for every vertex (Q column 0 for X and Y, 0 for Z or UV
+    // source, translation Q = 1): PPSSPP's software renderer keeps the rectangle walk then.
+    Rig r;
+    r.set(GE_CMD_TMAP, 1 | 0 << 8);  // projection mapping from the model position
+    r.st.tgen[0] = 2, r.st.tgen[4] = 3, r.st.tgen[9] = 0.5f, r.st.tgen[11] = 1;
+    EXPECT_FALSE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.st.tgen[11] = 0.5f;  // Q constant but not 1
+    EXPECT_TRUE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.st.tgen[11] = 1, r.st.tgen[8] = 1;  // Q = z + 1 varies with the position's Z
+    EXPECT_TRUE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.set(GE_CMD_TMAP, 1 | 1 << 8);  // ...but a UV source has Z = 0
+    EXPECT_FALSE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.st.tgen[8] = 0, r.st.tgen[5] = 1;  // Q = V + 1
+    EXPECT_TRUE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.st.tgen[5] = 0;
+    r.set(GE_CMD_TMAP, 0);  // UV mapping: always the rectangle walk
+    EXPECT_FALSE(makeTransformState(r.st, 0x180, false, false).rectAsTriangles);
+    r.set(GE_CMD_TMAP, 1);
+    r.st.tgen[11] = 0.5f;
+    EXPECT_FALSE(makeTransformState(r.st, 0x180 | 1u << 23, false, false).rectAsTriangles);  // through
+}

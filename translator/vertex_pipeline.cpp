@@ -286,7 +286,7 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
 void VertexPipeline::rectangle(u32 ia, u32 ib) {
     const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
     if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
-    if (!ts_.through && ts_.texMap == 1) {
+    if (ts_.rectAsTriangles) {
         rectangleAsTriangles(v[0]->sv, v[1]->sv);
         return;
     }
