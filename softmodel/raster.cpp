@@ -5,6 +5,7 @@
 #include <climits>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace ge::soft {
 
@@ -125,7 +126,13 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
     }
     case PrimKind::Triangle: {
         const int lo = std::min({v[0]->y, v[1]->y, v[2]->y}), hi = std::max({v[0]->y, v[1]->y, v[2]->y});
-        sampleRowsOfTriangle(lo, hi, y1, y2);
+        const s64 area = s64(v[1]->x - v[0]->x) * (v[2]->y - v[0]->y) - s64(v[1]->y - v[0]->y) * (v[2]->x - v[0]->x);
+        if (area == 0) {  // rasterZeroAreaTriangle: every row the vertices' box touches
+            y1 = int(floorDiv(lo, 16));
+            y2 = int(floorDiv(hi, 16));
+        } else {
+            sampleRowsOfTriangle(lo, hi, y1, y2);
+        }
         break;
     }
     }
@@ -133,11 +140,103 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
     return y1 <= y2;
 }
 
+namespace {
+
+// The reference's edge bias (PPSSPP Rasterizer.cpp IsRightSideOrFlatBottomLine): −1 (exclusive)
+// when `p` lies above a horizontal edge a–b, or left of a slanted/vertical one, the line's x at
+// p.y formed with C++'s truncating integer division.
+inline bool refRightOrFlatBottom(const ScreenVertex& p, const ScreenVertex& a, const ScreenVertex& b) {
+    if (a.y == b.y) return p.y < a.y;
+    return s64(p.x) < s64(a.x) + (s64(b.x) - a.x) * (s64(p.y) - a.y) / (s64(b.y) - a.y);
+}
+
+// A zero-area triangle as the reference renders rasterise it — a reference quirk: ref §8.11 says
+// the GE draws nothing for one (the renderer's caller decides whether such triangles get here).
+// PPSSPP's software renderer submits a triangle as (a, b, c) and again as (c, b, a) with culling
+// off (TransformUnit::SendTriangle; one order only with culling on, not modelled: no reference
+// dump tells) and keeps an order unless its cross product is negative (BinManager::AddTriangle),
+// so a zero-area triangle is drawn in both orders; only one whose three x or three y are all
+// equal is dropped there. Its three edge functions sum
+// to zero, so a sample passes (all E_i + bias_i ≥ 0) only where every E_i is 0 — on the line
+// through the vertices — and no edge is biased: a thin line of pixels whose sample point lies
+// exactly on it, within the pixel box of the vertices (the reference walks every pixel the box
+// touches, not only centres inside it). Valkyria Chronicles draws a ring of 2×2 quads as one
+// strip joined by repeated vertices; the join (v, w, w) from one quad's corner to the next quad
+// draws that corner's pixel in the reference. Weights are all 0 and their reciprocal infinite, so
+// attributes that are not constant come out NaN: colour and fog convert to 0, texture coordinates
+// to 0 (as finiteOr0 elsewhere), depth as below.
+void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1,
+                            const ScreenVertex& in2, const ScreenVertex& prov, const Band& band,
+                            FragmentSink& sink) {
+    if ((in0.x == in1.x && in0.x == in2.x) || (in0.y == in1.y && in0.y == in2.y)) return;
+    const int minX = std::min({in0.x, in1.x, in2.x}), maxX = std::max({in0.x, in1.x, in2.x});
+    const int minY = std::min({in0.y, in1.y, in2.y}), maxY = std::max({in0.y, in1.y, in2.y});
+    const int px1 = std::max<int>(int(floorDiv(minX, 16)), rp.clipX1);
+    const int px2 = std::min<int>(int(floorDiv(maxX, 16)), rp.clipX2);
+    const int py1 = std::max<int>(int(floorDiv(minY, 16)), rp.clipY1);
+    const int py2 = std::min<int>(int(floorDiv(maxY, 16)), rp.clipY2);
+    if (px1 > px2 || !band.overlaps(py1, py2)) return;
+
+    const ScreenVertex& cs = rp.gouraud ? in0 : prov;
+    const bool zConst = in0.z == in1.z && in1.z == in2.z;
+    // NaN depth converts to INT_MIN, which the reference's depth range test (every pixel outside
+    // through mode: PixelFuncID applyDepthRange) rejects whatever MINZ is; in through mode it is
+    // written as its low 16 bits, 0.
+    if (!zConst && !rp.through) return;
+    const bool colConst = !rp.gouraud || (std::memcmp(in0.color, in1.color, 4) == 0 &&
+                                          std::memcmp(in1.color, in2.color, 4) == 0);
+    const bool secConst = !rp.gouraud || (std::memcmp(in0.secondary, in1.secondary, 3) == 0 &&
+                                          std::memcmp(in1.secondary, in2.secondary, 3) == 0);
+    const bool fogConst = !rp.fog || (in0.fog >= 1.0f && in1.fog >= 1.0f && in2.fog >= 1.0f);
+
+    // The level of detail from NaN steps: the reference's max(|ds·w|, |dt·h|) is a positive NaN,
+    // whose float-bits log2 (texLog2) is about 128.5 levels: the smallest mipmap level.
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float lod = rp.textured && rp.needLod ? lodFromStepsF(rp, nan, nan) : 0.0f;
+    const ScreenVertex* orders[2][3] = {{&in0, &in1, &in2}, {&in2, &in1, &in0}};
+    for (const auto& p : orders) {
+        s64 A[3], B[3], C[3], bias[3];
+        for (int i = 0; i < 3; ++i) {
+            const ScreenVertex& a = *p[(i + 1) % 3];
+            const ScreenVertex& b = *p[(i + 2) % 3];
+            A[i] = s64(a.y) - b.y;
+            B[i] = s64(b.x) - a.x;
+            C[i] = s64(b.y) * a.x - s64(b.x) * a.y;
+            bias[i] = refRightOrFlatBottom(*p[i], a, b) ? -1 : 0;
+        }
+        for (int y = py1; y <= py2; ++y) {
+            if (!band.owns(y)) continue;
+            const s64 sy = 16 * s64(y) + kTriSample;
+            for (int x = px1; x <= px2; ++x) {
+                const s64 sx = 16 * s64(x) + kTriSample;
+                bool in = true;
+                for (int i = 0; i < 3 && in; ++i) in = A[i] * sx + B[i] * sy + C[i] + bias[i] >= 0;
+                if (!in) continue;
+                Fragment& f = sink.next();
+                f.x = x;
+                f.y = y;
+                f.z = zConst ? u16(in0.z) : 0;
+                for (int c = 0; c < 4; ++c) f.color[c] = colConst ? cs.color[c] : 0;
+                for (int c = 0; c < 3; ++c) f.secondary[c] = secConst ? cs.secondary[c] : 0;
+                f.fog = fogConst ? 255 : 0;
+                f.s = f.t = 0.0f;
+                f.lod = lod;
+                f.w = rp.needW ? nan : 1.0f;
+            }
+        }
+    }
+}
+
+}  // namespace
+
 void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
                     const ScreenVertex& prov, const Band& band, FragmentSink& sink) {
     const ScreenVertex* v[3] = {&in0, &in1, &in2};
     s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
-    if (area == 0) return;  // zero-area triangles draw nothing (§8.11)
+    if (area == 0) {
+        rasterZeroAreaTriangle(rp, in0, in1, in2, prov, band, sink);
+        return;
+    }
     const bool swapped = area < 0;
     if (swapped) {
         // Either winding rasterises the same pixels; work with the clockwise (on screen) order,

@@ -306,11 +306,11 @@ struct SoftRenderer::Impl {
     }
 
     // Back-face culling (§3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
-    // clockwise ones; zero-area triangles draw nothing anyway.
+    // clockwise ones. Zero-area triangles are never culled: the rasteriser draws the samples they
+    // pass through as the reference does (raster.cpp rasterZeroAreaTriangle).
     bool culled(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) const {
         const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
-        if (area == 0) return true;
-        if (!cullOn) return false;
+        if (!cullOn || area == 0) return false;
         return cullClockwise ? area > 0 : area < 0;
     }
 

@@ -129,6 +129,33 @@ TEST(GlVsSoft, BilinearSpritesWithinOneWeightStep) {
     }, 0x20, 64 * 64 * 4 / 20);
 }
 
+// Zero-area triangles draw the samples exactly on their line (the reference renderer's rule,
+// softmodel/raster.cpp rasterZeroAreaTriangle); GL takes them from the software rasteriser.
+TEST(GlVsSoft, ZeroAreaTrianglesAreIdentical) {
+    auto build = [](ListBuilder& b) {
+        frameSetup(b);
+        b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0x00000000, 0, 0);
+        const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        // Collinear triangles along the diagonal: (P, Q, Q) in white, (Q, P, P) and a strip with
+        // a repeated vertex in blue.
+        BuildVertex v[6];
+        const float xy[6][2] = {{4, 4}, {20, 20}, {20, 20}, {40, 40}, {24, 24}, {24, 24}};
+        for (int i = 0; i < 6; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1], v[i].color = i < 3 ? 0xFFFFFFFFu : 0xFFFF0000u;
+        b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, packVertices(vtype, v, 6).data());
+        const float strip[5][2] = {{44, 2}, {44, 12}, {54, 2}, {54, 12}, {54, 12}};
+        for (int i = 0; i < 5; ++i) v[i].x = strip[i][0], v[i].y = strip[i][1], v[i].color = 0xFF00C000u;
+        b.drawArrayData(GE_PRIM_TRIANGLE_STRIP, vtype, 5, nullptr, packVertices(vtype, v, 5).data());
+    };
+    expectSame(build, 0, 0);
+    // The software model did draw pixels of the diagonal (the reference's rule, not §8.11's).
+    Frame s;
+    std::string err;
+    ASSERT_TRUE(renderWith(false, build, s, err)) << err;
+    size_t drawn = 0;
+    for (int i = 0; i < 48; ++i) drawn += readLE32(&s.vram[(size_t(i) * 64 + size_t(i)) * 4]) != 0 ? 1 : 0;
+    EXPECT_GT(drawn, 0u);
+}
+
 void litMesh(ListBuilder& b) {
     frameSetup(b, GE_FORMAT_565);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0x00000000, 0, 0);

@@ -140,10 +140,60 @@ TEST(SoftRaster, TopLeftRuleOnPixelCentres) {
         for (auto [x, y] : c.pixels()) EXPECT_GE(x, 1);
         EXPECT_FALSE(c.pixels().empty());
     }
-    // Degenerate (zero area) draws nothing.
+    // Zero area: see ZeroAreaTrianglesDrawSamplesOnTheirLine.
+}
+
+TEST(SoftRaster, ZeroAreaTrianglesDrawSamplesOnTheirLine) {
+    // The reference renderer draws a zero-area triangle in both vertex orders wherever all three
+    // biased edge functions are ≥ 0: sample points exactly on the line, no edge biased, within the
+    // pixel box of the vertices (raster.cpp rasterZeroAreaTriangle).
+    // A strip join (P, Q, Q) from a quad's corner P at a sample point (pixel (3, 2): 16·3 + 7,
+    // 16·2 + 7) to Q above it: no bias (P lies below the zero edge Q–Q), so pixel (3, 2), the only
+    // sample on the segment, is drawn once per order.
+    const ScreenVertex P = sv16(55, 39), Q = sv16(49, -10);
+    {
+        Collector c;
+        rasterTriangle(fullScreen(), P, Q, Q, Q, Band{}, c.sink);
+        ASSERT_EQ(c.done().size(), 2u);
+        for (const Fragment& f : c.done()) EXPECT_EQ(std::make_pair(f.x, f.y), std::make_pair(3, 2));
+    }
+    // (Q, P, P): Q lies above the zero edge P–P, a flat bottom for it (bias −1): nothing.
+    {
+        Collector c;
+        rasterTriangle(fullScreen(), Q, P, P, P, Band{}, c.sink);
+        EXPECT_TRUE(c.done().empty());
+    }
+    // Three distinct points on y = x from (0, 0) to (8, 8) pixels: no edge biased (the line's x at
+    // each vertex's y is the vertex's own), samples (16p + 7, 16p + 7) for p = 0…8 — pixel 8's
+    // sample lies past the last vertex but inside its pixel — twice each.
     {
         Collector c;
         rasterTriangle(fullScreen(), px(0, 0), px(4, 4), px(8, 8), px(8, 8), Band{}, c.sink);
+        std::set<std::pair<int, int>> expect;
+        for (int p = 0; p <= 8; ++p) expect.insert({p, p});
+        EXPECT_EQ(c.pixels(), expect);
+        EXPECT_EQ(c.done().size(), 18u);
+    }
+    // Depth that differs between the vertices is NaN there: outside through mode the depth range
+    // test rejects it (nothing drawn); in through mode it is written as 0.
+    {
+        ScreenVertex a = px(0, 0), b = px(4, 4), d = px(8, 8);
+        a.z = 100, b.z = 200, d.z = 300;
+        Collector c;
+        rasterTriangle(fullScreen(), a, b, d, d, Band{}, c.sink);
+        EXPECT_TRUE(c.done().empty());
+        RasterParams rp = fullScreen();
+        rp.through = true;
+        Collector t;
+        rasterTriangle(rp, a, b, d, d, Band{}, t.sink);
+        ASSERT_EQ(t.done().size(), 18u);
+        for (const Fragment& f : t.done()) EXPECT_EQ(f.z, 0);
+    }
+    // Three equal x (or three equal y) are dropped before rasterising.
+    {
+        Collector c;
+        rasterTriangle(fullScreen(), px(2.4375f, 0), px(2.4375f, 4), px(2.4375f, 8), px(2.4375f, 8), Band{}, c.sink);
+        rasterTriangle(fullScreen(), px(0, 2.4375f), px(4, 2.4375f), px(8, 2.4375f), px(8, 2.4375f), Band{}, c.sink);
         EXPECT_TRUE(c.done().empty());
     }
 }

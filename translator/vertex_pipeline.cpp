@@ -125,16 +125,26 @@ soft::RasterParams VertexPipeline::rasterParams() const {
 
 bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                             const soft::ScreenVertex& c) const {
-    // Zero-area triangles draw nothing (ref §8.11). Positive area = clockwise on screen (y
-    // down); CULL 0 culls clockwise, 1 counter-clockwise (ref §3.6).
+    // Positive area = clockwise on screen (y down); CULL 0 culls clockwise, 1 counter-clockwise
+    // (ref §3.6). Zero-area triangles are never culled: they draw the samples they pass through,
+    // as in the software model (see emitTriangle).
     const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
-    if (area == 0) return true;
-    if (!vs_.cull) return false;
+    if (!vs_.cull || area == 0) return false;
     return vs_.cullCcw ? area < 0 : area > 0;
 }
 
 void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                                   const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
+    if (s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x) == 0) {
+        // A zero-area triangle covers only samples exactly on its line, with the reference's
+        // degenerate attributes (softmodel/raster.cpp rasterZeroAreaTriangle): the software
+        // rasteriser decides them and each becomes a one-pixel quad, as lines do.
+        fragBuf_.resize(kFragmentBuffer);
+        soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+        soft::rasterTriangle(rasterParams(), a, b, c, prov, soft::Band{}, sink);
+        sink.flush();
+        return;
+    }
     const bool persp = !ts_.through;
     GlVertex g[3] = {toGl(a, persp), toGl(b, persp), toGl(c, persp)};
     // The software rasteriser samples triangles at 16·x + o (raster.h triangleSampleOffset), GL
