@@ -204,25 +204,30 @@ void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, con
             C[i] = s64(b.y) * a.x - s64(b.x) * a.y;
             bias[i] = refRightOrFlatBottom(*p[i], a, b) ? -1 : 0;
         }
+        // The three E_i sum to 0, so E_i + bias_i ≥ 0 for all i needs every bias 0 and every E_i
+        // exactly 0: the sample on the line. The line is not horizontal (equal y were dropped), so
+        // each row has at most one such sample, found from an edge with A ≠ 0 — the same pixels,
+        // in the same order, as testing every sample of the box, without walking the box.
+        if (bias[0] || bias[1] || bias[2]) continue;
+        const int k = A[0] != 0 ? 0 : (A[1] != 0 ? 1 : 2);
         for (int y = py1; y <= py2; ++y) {
             if (!band.owns(y)) continue;
             const s64 sy = 16 * s64(y) + kTriSample;
-            for (int x = px1; x <= px2; ++x) {
-                const s64 sx = 16 * s64(x) + kTriSample;
-                bool in = true;
-                for (int i = 0; i < 3 && in; ++i) in = A[i] * sx + B[i] * sy + C[i] + bias[i] >= 0;
-                if (!in) continue;
-                Fragment& f = sink.next();
-                f.x = x;
-                f.y = y;
-                f.z = zConst ? u16(in0.z) : 0;
-                for (int c = 0; c < 4; ++c) f.color[c] = colConst ? cs.color[c] : 0;
-                for (int c = 0; c < 3; ++c) f.secondary[c] = secConst ? cs.secondary[c] : 0;
-                f.fog = fogConst ? 255 : 0;
-                f.s = f.t = 0.0f;
-                f.lod = lod;
-                f.w = rp.needW ? nan : 1.0f;
-            }
+            const s64 num = -(B[k] * sy + C[k]);
+            if (num % A[k] != 0) continue;
+            const s64 sx = num / A[k];
+            const s64 xs = floorDiv(sx - kTriSample, 16);
+            if (xs * 16 != sx - kTriSample || xs < px1 || xs > px2) continue;  // not a sample point
+            Fragment& f = sink.next();
+            f.x = int(xs);
+            f.y = y;
+            f.z = zConst ? u16(in0.z) : 0;
+            for (int c = 0; c < 4; ++c) f.color[c] = colConst ? cs.color[c] : 0;
+            for (int c = 0; c < 3; ++c) f.secondary[c] = secConst ? cs.secondary[c] : 0;
+            f.fog = fogConst ? 255 : 0;
+            f.s = f.t = 0.0f;
+            f.lod = lod;
+            f.w = rp.needW ? nan : 1.0f;
         }
     }
 }
