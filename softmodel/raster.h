@@ -5,7 +5,9 @@
 // (§3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7, as the reference renderer
 // (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
 //   - triangles: top-left fill rule — pixels whose sample point is exactly on a right edge or on a
-//     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1);
+//     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1); zero-area triangles draw
+//     the samples exactly on their line when the fill rule allows it, as the reference renderer
+//     (not ge-reference §8.11's "nothing");
 //   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1), plus a far
 //     edge exactly on the centre of the second pixel of a 2×2 quad (the reference's quad walk);
 //   - lines: the reference renderer's walk of max(|dx|, |dy|) / 16 double-precision steps,
