@@ -434,11 +434,10 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
     }
 }
 
-void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
-                     FragmentSink& sink) {
+bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, RectSetup& out) {
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    if (xl == xr || yt == yb) return;  // zero width or height draws nothing (§8.11)
+    if (xl == xr || yt == yb) return false;  // zero width or height draws nothing (§8.11)
     // The reference renderer (PPSSPP's software GE, Rasterizer.cpp DrawRectangle) walks the box in
     // 2×2 pixel quads starting at the first covered pixel: a left/top edge up to the pixel centre
     // includes the pixel (centres 16·p + 8 ≥ edge, §8.1). Towards the far edge, the first pixel of
@@ -454,8 +453,7 @@ void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const Scree
     };
     const int px2 = lastCovered(px1, xr, rp.clipX2);
     const int py2 = lastCovered(py1, yb, rp.clipY2);
-    if (px1 > px2 || py1 > py2 || !band.overlaps(py1, py2)) return;
-
+    if (px1 > px2 || py1 > py2) return false;
     // Texture coordinates in single precision as the reference steps them (§8.2 orientation): the
     // change per two pixels, 2·Δ / (size in pixels), from the box's top-left corner moved to the
     // first pixel centre; then added once per pair of columns along a row and once per pair of rows
@@ -485,6 +483,17 @@ void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const Scree
         rowS = rowS + (styS / 32.0f) * offY;
         rowT = rowT + (styT / 32.0f) * offY;
     }
+    out = RectSetup{px1, py1, px2, py2, rowS, rowT, stxS, stxT, styS, styT};
+    return true;
+}
+
+void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
+                     FragmentSink& sink) {
+    RectSetup rs;
+    if (!rectangleSetup(rp, v0, v1, rs) || !band.overlaps(rs.py1, rs.py2)) return;
+    const int px1 = rs.px1, px2 = rs.px2, py1 = rs.py1, py2 = rs.py2;
+    float rowS = rs.rowS, rowT = rs.rowT;
+    const float stxS = rs.stxS, stxT = rs.stxT, styS = rs.styS, styT = rs.styT;
     const float hxS = 0.5f * stxS, hxT = 0.5f * stxT, hyS = 0.5f * styS, hyT = 0.5f * styT;
 
     // Colour, Z and fog of the second vertex for every pixel (manual §4.4, §8).

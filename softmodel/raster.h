@@ -120,6 +120,15 @@ float texLog2(float v);
 // ---- Interpolation setup shared with the GL translator (translator/tri_setup.h) ----
 // The GL backend evaluates triangle attributes per pixel from the very numbers this rasteriser
 // uses, so changes to this arithmetic reach both backends.
+// A rectangle as rasterRectangle walks it: the covered pixels (inclusive, clipped) and the texture
+// coordinates in single precision — s, t at the first pixel centre and their change per two
+// pixels along X and down Y (an odd pixel of a pair adds half a step). False when it covers
+// nothing.
+struct RectSetup {
+    int px1 = 0, py1 = 0, px2 = -1, py2 = -1;
+    float rowS = 0, rowT = 0, stxS = 0, stxT = 0, styS = 0, styT = 0;
+};
+bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, RectSetup& out);
 // 1/w as rasterTriangle weights perspective-correct texture coordinates with (w near 0 kept away
 // from a division by zero).
 double perspectiveRecip(float w);

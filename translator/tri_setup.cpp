@@ -118,64 +118,20 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
     putU32(r, T::kHeader, 0, flags);
 }
 
-namespace {
-s64 floorDiv16(s64 a) { return a >= 0 ? a / 16 : -((15 - a) / 16); }
-s64 ceilDiv16(s64 a) { return -floorDiv16(-a); }
-}  // namespace
-
 bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
                    TriRecord& r, int box[4]) {
     std::memset(&r, 0, sizeof r);
     putU32(r, T::kHeader, 0, T::kKindRect);
-    const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
-    const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    if (xl == xr || yt == yb) return false;  // zero width or height draws nothing (§8.11)
-    // Covered pixels as rasterRectangle: from the first centre at or after the near edge; towards
-    // the far edge centres strictly inside, plus a centre exactly on the edge when it is the odd
-    // pixel of a pair counted from the first one (the reference's 2×2 quad walk); then clipped.
-    const int px1 = std::max(int(ceilDiv16(s64(xl) - 8)), rp.clipX1);
-    const int py1 = std::max(int(ceilDiv16(s64(yt) - 8)), rp.clipY1);
-    auto lastCovered = [](int first, int far, int clip) {
-        int last = int(ceilDiv16(s64(far) - 8)) - 1;
-        if (((far - 8) & 15) == 0 && ((last + 1 - first) & 1) == 1) ++last;
-        return std::min(last, clip);
-    };
-    const int px2 = lastCovered(px1, xr, rp.clipX2), py2 = lastCovered(py1, yb, rp.clipY2);
-    if (px1 > px2 || py1 > py2) return false;
-    box[0] = px1, box[1] = py1, box[2] = px2, box[3] = py2;
-    putU32(r, T::kRectBox, 0, u32(px1)), putU32(r, T::kRectBox, 1, u32(py1));
-    putU32(r, T::kRectBox, 2, u32(px2)), putU32(r, T::kRectBox, 3, u32(py2));
-
-    // Texture coordinates as rasterRectangle steps them in single precision (§8.2 orientation):
-    // the change per two pixels, 2·Δ / size, and the start moved from the box corner to the
-    // first pixel centre. The shader repeats the running sums (shader_gen.cpp exactTexInputs).
-    float rowS = 0, rowT = 0, stxS = 0, stxT = 0, styS = 0, styT = 0;
-    if (rp.textured) {
-        const float diffX = float(xr - xl) / 16.0f, diffY = float(yb - yt) / 16.0f;
-        const float diffS = v1.s - v0.s, diffT = v1.t - v0.t;
-        const bool left = v0.x < v1.x, above = v0.y < v1.y;
-        if (left && above) {
-            rowS = v0.s, rowT = v0.t;
-            stxS = 2.0f * diffS / diffX, styT = 2.0f * diffT / diffY;
-        } else if (left) {
-            rowS = v1.s, rowT = v0.t;
-            stxT = 2.0f * diffT / diffX, styS = 2.0f * -diffS / diffY;
-        } else if (above) {
-            rowS = v0.s, rowT = v1.t;
-            stxT = 2.0f * -diffT / diffX, styS = 2.0f * diffS / diffY;
-        } else {
-            rowS = v1.s, rowT = v1.t;
-            stxS = 2.0f * -diffS / diffX, styT = 2.0f * -diffT / diffY;
-        }
-        const float offX = float(16 * px1 + 8 - xl), offY = float(16 * py1 + 8 - yt);
-        rowS = rowS + (stxS / 32.0f) * offX;
-        rowT = rowT + (stxT / 32.0f) * offX;
-        rowS = rowS + (styS / 32.0f) * offY;
-        rowT = rowT + (styT / 32.0f) * offY;
-    }
-    putF32(r, T::kRectStart, 0, rowS), putF32(r, T::kRectStart, 1, rowT);
-    putF32(r, T::kRectStart, 2, stxS), putF32(r, T::kRectStart, 3, stxT);
-    putF32(r, T::kRectRow, 0, styS), putF32(r, T::kRectRow, 1, styT);
+    // Covered pixels and texture stepping exactly as rasterRectangle (soft::rectangleSetup); the
+    // shader repeats its running sums (shader_gen.cpp exactTexInputs).
+    soft::RectSetup rs;
+    if (!soft::rectangleSetup(rp, v0, v1, rs)) return false;
+    box[0] = rs.px1, box[1] = rs.py1, box[2] = rs.px2, box[3] = rs.py2;
+    putU32(r, T::kRectBox, 0, u32(rs.px1)), putU32(r, T::kRectBox, 1, u32(rs.py1));
+    putU32(r, T::kRectBox, 2, u32(rs.px2)), putU32(r, T::kRectBox, 3, u32(rs.py2));
+    putF32(r, T::kRectStart, 0, rs.rowS), putF32(r, T::kRectStart, 1, rs.rowT);
+    putF32(r, T::kRectStart, 2, rs.stxS), putF32(r, T::kRectStart, 3, rs.stxT);
+    putF32(r, T::kRectRow, 0, rs.styS), putF32(r, T::kRectRow, 1, rs.styT);
     putF32(r, T::kRectRow, 2, rp.texW0), putF32(r, T::kRectRow, 3, rp.texH0);
     putU32(r, T::kHeader, 1, rp.fog ? soft::fogToByte(v1.fog) : 255u);
     putF32(r, T::kHeader, 2, 0.0f);
