@@ -240,6 +240,26 @@ struct SoftRenderer::Impl {
         return false;
     }
 
+    // True when bytes the host writes at [addr, addr + size) may be ones queued or running draws
+    // read or write. Draws keep their own copies of vertices and decoded textures, so they touch
+    // guest memory only in the frame and depth buffers (Batch::writes, in the plain VRAM view):
+    // RAM writes (the dump player's vertex and texture payloads) need no wait. A write reaching
+    // a VRAM mirror, or of unknown size, is answered conservatively.
+    bool queuedTouches(u32 addr, u32 size) const {
+        if (!hasWork()) return false;
+        const u32 a = Memory::normalize(addr);
+        const u64 end = u64(a) + (size ? size : 1);
+        if (end <= Memory::kVramBase || a >= Memory::kVramMirrorsEnd) return false;
+        if (size == 0 || a < Memory::kVramBase || end > u64(Memory::kVramBase) + Memory::kVramSize) return true;
+        const VramRange r{a - Memory::kVramBase, u32(end - Memory::kVramBase)};
+        for (int k = 0; k < 2; ++k) {
+            if (k == 1 && !inFlight) continue;
+            for (const VramRange& w : batches[k == 0 ? buildIndex : buildIndex ^ 1].writes)
+                if (overlaps(r, w)) return true;
+        }
+        return false;
+    }
+
     // Frame/depth buffer bytes a draw with this state and clip rectangle may write.
     void noteWrites(const GeState& st, const RasterParams& rp) {
         const int rows = std::clamp(rp.clipY2 + 1, 0, 1024);
@@ -666,16 +686,15 @@ void SoftRenderer::finish() { impl_->waitIdle(); }
 
 void SoftRenderer::syncMemoryForRead(u32 addr, u32 size) {
     Impl& I = *impl_;
-    if (!I.hasWork()) return;
-    // Only VRAM is drawn into. Size 0 = unknown extent: wait whenever it starts in VRAM.
-    const u32 a = Memory::normalize(addr);
-    const u64 end = u64(a) + (size ? size : 1);
-    if (end > Memory::kVramBase && a < Memory::kVramMirrorsEnd) I.waitIdle();
+    // Only the frame and depth buffers of queued draws are drawn into (size 0 = unknown extent:
+    // any VRAM).
+    if (I.queuedTouches(addr, size)) I.waitIdle();
 }
 
 void SoftRenderer::memoryWritten(u32 addr, u32 size) {
     Impl& I = *impl_;
-    I.waitIdle();  // queued draws must not see (or be overwritten by) the new bytes out of order
+    // Queued draws must not see (or be overwritten by) the new bytes out of order.
+    if (I.queuedTouches(addr, size)) I.waitIdle();
     invalidateTextureCache(*I.cache, addr, size);
     I.psValid = false;
 }

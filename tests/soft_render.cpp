@@ -426,3 +426,49 @@ TEST(SoftRender, BadVertexAddressIsHarmless) {
     r->flushToMemory();
     EXPECT_GE(static_cast<SoftRenderer*>(r.get())->stats().badDraws, 1u);
 }
+
+// Host writes while draws are queued (the dump player and the plugin API call syncMemoryForRead
+// before and memoryWritten after writing): a write into the frame buffer of a queued draw must
+// land after that draw; a RAM write (vertex data the draw already copied) must not change it.
+TEST(SoftRender, HostWritesStayInOrderWithQueuedDraws) {
+    Scene s;
+    s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFFFFFFFF), tv(100, 50, 0xFFFFFFFF)});
+    ListBuilder copy = s.b;
+    copy.finish();
+    const u32 list = copy.placeList();
+    const u32 stall = list + u32(copy.words().size()) * 4 - 8;  // stop before FINISH + END
+    const u8* arenaPtr = s.mem.ptr(0x08800000, 0x10000);
+    ASSERT_NE(arenaPtr, nullptr);
+    const std::vector<u8> arena(arenaPtr, arenaPtr + 0x10000);  // the list and its vertices
+    for (int threads : {1, 2, 4}) {
+        SCOPED_TRACE(threads);
+        s.mem.write(0x08800000, arena.data(), u32(arena.size()));
+        SoftOptions o;
+        o.threads = threads;
+        auto r = createSoftRenderer(s.mem, o);
+        s.mem.fill(Memory::kVramBase, 0, Memory::kVramSize);
+        GeEngine eng(s.mem, r.get());
+        eng.startList(list, stall);
+        ASSERT_EQ(eng.run(), RunStatus::Stalled);
+        // Overwrite RAM from the list's arena onwards (vertex data included): no effect on the
+        // queued rectangle.
+        const u32 ram = 0x08800000;
+        std::vector<u8> junk(0x10000, 0xEE);
+        r->syncMemoryForRead(ram, u32(junk.size()));
+        s.mem.write(ram, junk.data(), u32(junk.size()));
+        r->memoryWritten(ram, u32(junk.size()));
+        // Write a pixel inside the rectangle: it must survive the queued draw.
+        const u32 px = kFb + (10 * kStride + 10) * 4;
+        const u8 blue[4] = {0, 0, 0xFF, 0};
+        r->syncMemoryForRead(px, 4);
+        s.mem.write(px, blue, 4);
+        r->memoryWritten(px, 4);
+        r->flushToMemory();
+        const u8* v = s.mem.ptr(Memory::kVramBase, Memory::kVramSize);
+        const std::vector<u8> vram(v, v + Memory::kVramSize);
+        EXPECT_EQ(Scene::pixel(vram, kFb, 10, 10), 0xFF0000u);
+        EXPECT_EQ(Scene::pixel(vram, kFb, 11, 10), 0xFFFFFFu);
+        EXPECT_EQ(Scene::pixel(vram, kFb, 99, 49), 0xFFFFFFu);
+        EXPECT_EQ(Scene::pixel(vram, kFb, 100, 49), 0x000000u);
+    }
+}
