@@ -58,17 +58,38 @@ void addRange(std::vector<VramRange>& list, VramRange r) {
     list.push_back(r);
 }
 
+// A draw's render target: frame buffer and (when written or tested) depth buffer, with the VRAM
+// bytes each may touch.
+struct Target {
+    u32 fb = 0, fbStride = 0, fmt = 0, zb = 0, zbStride = 0;
+    bool depth = false;
+    VramRange fbRange, zbRange;
+    bool sameBuffers(const Target& o) const {
+        return fb == o.fb && fbStride == o.fbStride && fmt == o.fmt && depth == o.depth &&
+               (!depth || (zb == o.zb && zbStride == o.zbStride));
+    }
+    // Bands own rows, so one batch may only hold targets whose bytes do not alias: two targets
+    // sharing bytes at different rows would have two threads write them in either order.
+    bool aliases(const Target& o) const {
+        if (overlaps(fbRange, o.fbRange)) return true;
+        if (depth && (overlaps(zbRange, o.fbRange) || (o.depth && overlaps(zbRange, o.zbRange)))) return true;
+        return o.depth && overlaps(fbRange, o.zbRange);
+    }
+};
+
 struct Batch {
     std::vector<ScreenVertex> verts;
     std::vector<RasterPrim> prims;
     std::vector<DrawItem> draws;
     std::vector<VramRange> writes;  // what the queued draws may write (frame and depth buffers)
+    std::vector<Target> targets;    // the render targets of the queued draws
     bool empty() const { return draws.empty(); }
     void clear() {
         verts.clear();
         prims.clear();
         draws.clear();
         writes.clear();
+        targets.clear();
     }
 };
 
@@ -260,13 +281,39 @@ struct SoftRenderer::Impl {
         return false;
     }
 
-    // Frame/depth buffer bytes a draw with this state and clip rectangle may write.
-    void noteWrites(const GeState& st, const RasterParams& rp) {
+    // The render target of a draw with this state and clip rectangle: the frame/depth buffer
+    // bytes it may write.
+    static Target targetOf(const GeState& st, const RasterParams& rp) {
+        Target t;
         const int rows = std::clamp(rp.clipY2 + 1, 0, 1024);
         const u32 bpp = st.framebufFormat() == GE_FORMAT_8888 ? 4 : 2;
-        addRange(building().writes, vramRange(st.framebufAddr(), u64(st.framebufStride()) * rows * bpp));
-        if (st.ZTE_on() || st.isClearMode())
-            addRange(building().writes, vramRange(st.depthbufAddr(), u64(st.depthbufStride()) * rows * 2));
+        t.fb = st.framebufAddr(), t.fbStride = st.framebufStride(), t.fmt = u32(st.framebufFormat());
+        t.fbRange = vramRange(t.fb, u64(t.fbStride) * rows * bpp);
+        t.depth = st.ZTE_on() || st.isClearMode();
+        if (t.depth) {
+            t.zb = st.depthbufAddr(), t.zbStride = st.depthbufStride();
+            t.zbRange = vramRange(t.zb, u64(t.zbStride) * rows * 2);
+        }
+        return t;
+    }
+
+    // Records the draw's target in the building batch; a target aliasing another one already
+    // there first sends the batch off (batches run one after the other, in order).
+    void noteTarget(const Target& t) {
+        for (const Target& e : building().targets) {
+            if (threads <= 1) break;  // one thread draws everything in order
+            if (e.sameBuffers(t)) continue;
+            if (e.aliases(t)) {
+                submit();
+                break;
+            }
+        }
+        Batch& b = building();
+        for (const Target& e : b.targets)
+            if (e.sameBuffers(t)) return;
+        b.targets.push_back(t);
+        addRange(b.writes, t.fbRange);
+        if (t.depth) addRange(b.writes, t.zbRange);
     }
 
     // ---- per draw ----
@@ -278,6 +325,9 @@ struct SoftRenderer::Impl {
         const bool through = st.isThrough();
         constexpr u32 kPixelDirty = DIRTY_TEXTURE | DIRTY_CLUT | DIRTY_FRAGMENT | DIRTY_BLEND | DIRTY_DEPTHSTENCIL |
                                     DIRTY_RASTER | DIRTY_FRAMEBUF;
+        // Before the pixel state is built: sending the batch off may retire one whose writes
+        // invalidate cached textures.
+        noteTarget(targetOf(st, rp));
         if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured) {
             ps = buildPixelState(st, mem, *cache, textured);
             psValid = !forceRebuild;
@@ -298,7 +348,6 @@ struct SoftRenderer::Impl {
         }
         d.primEnd = u32(b.prims.size());
         b.draws.push_back(std::move(d));
-        noteWrites(st, rp);
         stats.primitives += scratchPrims.size();
         if (b.prims.size() >= kBatchPrimitives || b.verts.size() >= kBatchVertices) submit();
     }

@@ -243,6 +243,21 @@ TEST(SoftRender, RenderToTextureSeesEarlierDraws) {
     EXPECT_TRUE(a == b);
 }
 
+// Renders a 64×64 texture, red left half and green right half, at kFb2 and binds it with
+// REPLACE and bilinear filtering: sampling 1/16 pixel apart at the boundary tells a rectangle's
+// centre sampling from a triangle's.
+void redGreenTexture(Scene& s) {
+    s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
+    s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
+    s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
+    s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+    s.b.enable(GE_CMD_TME, true);
+    s.b.texMode(GE_TFMT_8888, 0, false);
+    s.b.setTexture(0, kFb2, 64, 64, 64);
+    s.b.texFunc(3, true);
+    s.b.texFilter(1, 1);
+}
+
 TEST(SoftRender, StripQuadDrawnAsRectangle) {
     // The reference renderer (PPSSPP's) draws a 4-vertex strip that forms an axis-aligned
     // rectangle with matching UVs and one colour as a RECTANGLES primitive, sampled at pixel
@@ -250,15 +265,7 @@ TEST(SoftRender, StripQuadDrawnAsRectangle) {
     // of a texture whose left half is red and right half green shows which path ran: at the
     // column where green starts a rectangle gives pure green, triangles blend 1/16 of red in.
     auto build = [](Scene& s, u32 cornerColor) {
-        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
-        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
-        s.b.enable(GE_CMD_TME, true);
-        s.b.texMode(GE_TFMT_8888, 0, false);
-        s.b.setTexture(0, kFb2, 64, 64, 64);
-        s.b.texFunc(3, true);
-        s.b.texFilter(1, 1);
+        redGreenTexture(s);
         constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
         auto corner = [&](float x, float y, u32 c) {
             BuildVertex v = tv(100 + x, 100 + y, c);
@@ -290,15 +297,7 @@ TEST(SoftRender, ProjectionStripWithQOneDrawnAsRectangle) {
     // Carbon's HUD). With Q = 2 (S and T doubled to match) it becomes two triangles sampled 1/16
     // pixel earlier. Bilinear 1:1 mapping of a red|green texture tells the two apart.
     auto build = [](Scene& s, float q) {
-        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
-        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
-        s.b.enable(GE_CMD_TME, true);
-        s.b.texMode(GE_TFMT_8888, 0, false);
-        s.b.setTexture(0, kFb2, 64, 64, 64);
-        s.b.texFunc(3, true);
-        s.b.texFilter(1, 1);
+        redGreenTexture(s);
         const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         s.b.setMatrix(GeMatrix::World, id);
         s.b.setMatrix(GeMatrix::View, id);
@@ -338,15 +337,7 @@ TEST(SoftRender, FanQuadDrawnAsRectangle) {
     // Same idea for a fresh 4-vertex fan TL, TR, BR, BL (the reference's DetectRectangleFromFan):
     // drawn as a rectangle it samples pixel centres, so the first green column is pure green.
     auto build = [](Scene& s, u32 cornerColor) {
-        s.b.drawBuffer(GE_FORMAT_8888, kFb2 - Memory::kVramBase, 64);
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF0000FF), tv(32, 64, 0xFF0000FF)});
-        s.throughPrim(GE_PRIM_RECTANGLES, {tv(32, 0, 0xFF00FF00), tv(64, 64, 0xFF00FF00)});
-        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
-        s.b.enable(GE_CMD_TME, true);
-        s.b.texMode(GE_TFMT_8888, 0, false);
-        s.b.setTexture(0, kFb2, 64, 64, 64);
-        s.b.texFunc(3, true);
-        s.b.texFilter(1, 1);
+        redGreenTexture(s);
         constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
         auto corner = [&](float x, float y, u32 c) {
             BuildVertex v = tv(100 + x, 100 + y, c);
@@ -470,5 +461,23 @@ TEST(SoftRender, HostWritesStayInOrderWithQueuedDraws) {
         EXPECT_EQ(Scene::pixel(vram, kFb, 11, 10), 0xFFFFFFu);
         EXPECT_EQ(Scene::pixel(vram, kFb, 99, 49), 0xFFFFFFu);
         EXPECT_EQ(Scene::pixel(vram, kFb, 100, 49), 0x000000u);
+    }
+}
+
+// Two render targets whose bytes alias at different rows (a second buffer starting inside the
+// first, with another stride) in one frame: band threads own rows, so such draws must not share
+// a batch; the result is the same for any thread count.
+TEST(SoftRender, AliasingRenderTargetsStayInOrder) {
+    Scene s;
+    for (int k = 0; k < 6; ++k) {
+        s.b.drawBuffer(GE_FORMAT_8888, 0, kStride);
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF000000u | u32(k * 40)), tv(480, 272, 0xFF000000u | u32(k * 40))});
+        // Starts 37 rows (plus 5 pixels) into the first buffer, 256 pixels per row.
+        s.b.drawBuffer(GE_FORMAT_8888, (37 * kStride + 5) * 4, 256);
+        s.throughPrim(GE_PRIM_RECTANGLES, {tv(0, 0, 0xFF00FF00u | u32(k)), tv(256, 200, 0xFF00FF00u | u32(k))});
+    }
+    const std::vector<u8> one = s.run(1);
+    for (int threads : {2, 4}) {
+        for (int repeat = 0; repeat < 4; ++repeat) EXPECT_TRUE(s.run(threads) == one) << threads;
     }
 }
