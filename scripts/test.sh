@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Set up, build and run the whole test suite, then the same tests under ASan+UBSan.
-# GE2GL_SKIP_SANITIZE=1 skips the sanitizer pass (for quick local runs).
+# Set up, build and run the whole test suite, then the same tests under ASan+UBSan, then the
+# software model's tests and every dump with 4 band threads under ThreadSanitizer.
+# GE2GL_SKIP_SANITIZE=1 skips the sanitizer passes (for quick local runs).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/setup.sh"
@@ -14,4 +15,14 @@ if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   # Accuracy runs over all frametests are slow under the sanitizers and add nothing there.
   (cd "$root/build-asan" && GE2GL_SANITIZER_RUN=1 ctest --output-on-failure -j"$jobs" --timeout 2400 -LE accuracy)
+  echo "== software model under ThreadSanitizer (4 band threads) =="
+  cmake -S "$root" -B "$root/build-tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGE2GL_TSAN=ON \
+    -DGE2GL_BUILD_GL=OFF -DGE2GL_BUILD_BENCH=OFF >/dev/null
+  ninja -C "$root/build-tsan" -j"$jobs" test_soft ge2gl_cli
+  export TSAN_OPTIONS=halt_on_error=1:exitcode=66
+  (cd "$root/build-tsan" && ctest --output-on-failure -j"$jobs" --timeout 2400 -L soft)
+  shopt -s nullglob
+  for d in "$root"/dumps/*.ppdmp "$root"/../shared/frametests/dumps/*.zip; do
+    "$root/build-tsan/ge2gl" render "$d" --backend soft --threads 4 -o "$root/build-tsan/tsan.png" >/dev/null
+  done
 fi
