@@ -364,13 +364,7 @@ bool DumpRecorder::isTarget(u32 addr) const {
     return std::find(targets_.begin(), targets_.end(), canonical(addr)) != targets_.end();
 }
 
-void DumpRecorder::cpuMemcpy(u32 dest, const void* data, u32 size) {
-    if (!Memory::isVram(dest) || size == 0) return;
-    // The copy happens between GE commands: close the open block so players run the list up
-    // to here first (ppdmp-format.md §6.2 MEMCPYDATA).
-    flushBlock();
-    out_.memcpy(dest, data, size);
-    // Bytes written by the CPU are known again: cut them out of the drawn ranges.
+void DumpRecorder::forgetDrawn(u32 dest, u32 size) {
     const u32 b = canonical(dest), e = b + size;
     std::vector<Range> kept;
     for (const Range& r : drawn_) {
@@ -384,21 +378,20 @@ void DumpRecorder::cpuMemcpy(u32 dest, const void* data, u32 size) {
     drawn_.swap(kept);
 }
 
+void DumpRecorder::cpuMemcpy(u32 dest, const void* data, u32 size) {
+    if (!Memory::isVram(dest) || size == 0) return;
+    // The copy happens between GE commands: close the open block so players run the list up
+    // to here first (ppdmp-format.md §6.2 MEMCPYDATA).
+    flushBlock();
+    out_.memcpy(dest, data, size);
+    forgetDrawn(dest, size);
+}
+
 void DumpRecorder::cpuMemset(u32 dest, u8 value, u32 size) {
     if (!Memory::isVram(dest) || size == 0) return;
     flushBlock();
     out_.memset(dest, value, size);
-    const u32 b = canonical(dest), e = b + size;
-    std::vector<Range> kept;
-    for (const Range& r : drawn_) {
-        if (r.end <= b || e <= r.begin) {
-            kept.push_back(r);
-            continue;
-        }
-        if (r.begin < b) kept.push_back({r.begin, b});
-        if (e < r.end) kept.push_back({e, r.end});
-    }
-    drawn_.swap(kept);
+    forgetDrawn(dest, size);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -121,6 +121,8 @@ private:
     bool recordTransfer(u32 word);
     void markDrawnBuffers(bool depthWritten);
     bool overlapsDrawn(u32 addr, u32 size) const;
+    // Bytes the CPU wrote are known again: cuts [dest, dest + size) out of the drawn ranges.
+    void forgetDrawn(u32 dest, u32 size);
     bool isTarget(u32 addr) const;
     u32 formAddress(u32 arg) const;
 
