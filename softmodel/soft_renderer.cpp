@@ -241,6 +241,16 @@ struct SoftRenderer::Impl {
 
     bool hasWork() const { return inFlight || !batches[buildIndex].empty(); }
 
+    // True when r overlaps what the building or the in-flight batch may write.
+    bool queuedWritesOverlap(const VramRange& r) const {
+        for (int k = 0; k < 2; ++k) {
+            if (k == 1 && !inFlight) continue;
+            for (const VramRange& w : batches[k == 0 ? buildIndex : buildIndex ^ 1].writes)
+                if (overlaps(r, w)) return true;
+        }
+        return false;
+    }
+
     // True when the texture of the coming draw may overlap what queued draws write.
     bool textureHazard(const GeState& st) const {
         if (!hasWork()) return false;
@@ -250,13 +260,7 @@ struct SoftRenderer::Impl {
             const u32 addr = st.textureAddr(int(l));
             if (!Memory::isVram(addr)) continue;
             const u64 bytes = u64(st.textureBufWidth(int(l))) * st.textureHeight(int(l)) * bits / 8 + 16;
-            const VramRange r = vramRange(addr, bytes);
-            for (int k = 0; k < 2; ++k) {
-                if (k == 1 && !inFlight) continue;
-                const Batch& b = batches[k == 0 ? buildIndex : buildIndex ^ 1];
-                for (const VramRange& w : b.writes)
-                    if (overlaps(r, w)) return true;
-            }
+            if (queuedWritesOverlap(vramRange(addr, bytes))) return true;
         }
         return false;
     }
@@ -272,13 +276,7 @@ struct SoftRenderer::Impl {
         const u64 end = u64(a) + (size ? size : 1);
         if (end <= Memory::kVramBase || a >= Memory::kVramMirrorsEnd) return false;
         if (size == 0 || a < Memory::kVramBase || end > u64(Memory::kVramBase) + Memory::kVramSize) return true;
-        const VramRange r{a - Memory::kVramBase, u32(end - Memory::kVramBase)};
-        for (int k = 0; k < 2; ++k) {
-            if (k == 1 && !inFlight) continue;
-            for (const VramRange& w : batches[k == 0 ? buildIndex : buildIndex ^ 1].writes)
-                if (overlaps(r, w)) return true;
-        }
-        return false;
+        return queuedWritesOverlap(VramRange{a - Memory::kVramBase, u32(end - Memory::kVramBase)});
     }
 
     // The render target of a draw with this state and clip rectangle: the frame/depth buffer
