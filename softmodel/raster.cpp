@@ -177,17 +177,13 @@ void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, con
     const int py2 = std::min<int>(int(floorDiv(maxY, 16)), rp.clipY2);
     if (px1 > px2 || !band.overlaps(py1, py2)) return;
 
-    const ScreenVertex& cs = rp.gouraud ? in0 : prov;
-    const bool zConst = in0.z == in1.z && in1.z == in2.z;
+    const TriangleConstants same = triangleConstants(rp, in0, in1, in2, prov);
+    const ScreenVertex& cs = *same.source;
+    const bool zConst = same.z, colConst = same.color, secConst = same.secondary, fogConst = same.fog;
     // NaN depth converts to INT_MIN, which the reference's depth range test (every pixel outside
     // through mode: PixelFuncID applyDepthRange) rejects whatever MINZ is; in through mode it is
     // written as its low 16 bits, 0.
     if (!zConst && !rp.through) return;
-    const bool colConst = !rp.gouraud || (std::memcmp(in0.color, in1.color, 4) == 0 &&
-                                          std::memcmp(in1.color, in2.color, 4) == 0);
-    const bool secConst = !rp.gouraud || (std::memcmp(in0.secondary, in1.secondary, 3) == 0 &&
-                                          std::memcmp(in1.secondary, in2.secondary, 3) == 0);
-    const bool fogConst = !rp.fog || (in0.fog >= 1.0f && in1.fog >= 1.0f && in2.fog >= 1.0f);
 
     // The level of detail from NaN steps: the reference's max(|ds·w|, |dt·h|) is a positive NaN,
     // whose float-bits log2 (texLog2) is about 128.5 levels: the smallest mipmap level.
@@ -293,15 +289,9 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
     };
 
     // Constant attributes are detected once so the common cases cost nothing per pixel.
-    const bool zConst = v[0]->z == v[1]->z && v[1]->z == v[2]->z;
-    const ScreenVertex& cs = rp.gouraud ? *v[0] : prov;  // colour source when constant
-    const bool colConst = !rp.gouraud || (std::memcmp(v[0]->color, v[1]->color, 4) == 0 &&
-                                          std::memcmp(v[1]->color, v[2]->color, 4) == 0);
-    const bool secConst = !rp.gouraud || (std::memcmp(v[0]->secondary, v[1]->secondary, 3) == 0 &&
-                                          std::memcmp(v[1]->secondary, v[2]->secondary, 3) == 0);
-    // Fog is interpolated unless every vertex is unfogged (f ≥ 1): the reference does so even
-    // when the three factors are equal, and the float sum need not give the value back exactly.
-    const bool fogConst = !rp.fog || (v[0]->fog >= 1.0f && v[1]->fog >= 1.0f && v[2]->fog >= 1.0f);
+    const TriangleConstants same = triangleConstants(rp, in0, in1, in2, prov);
+    const ScreenVertex& cs = *same.source;  // colour source when constant
+    const bool zConst = same.z, colConst = same.color, secConst = same.secondary, fogConst = same.fog;
     // The edge functions sum to the (positive) area everywhere: one reciprocal per triangle.
     const float wsumRecip = 1.0f / float(area);
     const u8 fogValue = 255;
@@ -432,6 +422,18 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
             f.w = rp.needW ? finiteOr0(quadW) : 1.0f;
         }
     }
+}
+
+TriangleConstants triangleConstants(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1,
+                                    const ScreenVertex& in2, const ScreenVertex& prov) {
+    TriangleConstants k;
+    k.z = in0.z == in1.z && in1.z == in2.z;
+    k.color = !rp.gouraud || (std::memcmp(in0.color, in1.color, 4) == 0 && std::memcmp(in1.color, in2.color, 4) == 0);
+    k.secondary = !rp.gouraud || (std::memcmp(in0.secondary, in1.secondary, 3) == 0 &&
+                                  std::memcmp(in1.secondary, in2.secondary, 3) == 0);
+    k.fog = !rp.fog || (in0.fog >= 1.0f && in1.fog >= 1.0f && in2.fog >= 1.0f);
+    k.source = rp.gouraud ? &in0 : &prov;
+    return k;
 }
 
 bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, RectSetup& out) {

@@ -120,6 +120,17 @@ float texLog2(float v);
 // ---- Interpolation setup shared with the GL translator (translator/tri_setup.h) ----
 // The GL backend evaluates triangle attributes per pixel from the very numbers this rasteriser
 // uses, so changes to this arithmetic reach both backends.
+// Which attributes of a triangle are the same at its three vertices (rasterTriangle's shortcuts,
+// shared with the GL records): Z; primary and secondary colours (always with flat shading);
+// fog when it is off or no vertex is fogged (the reference interpolates fog even between equal
+// factors, and the float sum need not give the value back). `source` gives the colours when
+// they are constant: in0, or the provoking vertex with flat shading.
+struct TriangleConstants {
+    bool z = false, color = false, secondary = false, fog = false;
+    const ScreenVertex* source = nullptr;
+};
+TriangleConstants triangleConstants(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1,
+                                    const ScreenVertex& in2, const ScreenVertex& prov);
 // A rectangle as rasterRectangle walks it: the covered pixels (inclusive, clipped) and the texture
 // coordinates in single precision — s, t at the first pixel centre and their change per two
 // pixels along X and down Y (an odd pixel of a pair adds half a step). False when it covers

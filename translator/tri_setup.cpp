@@ -97,11 +97,9 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
     putDepths(r, o[0]->z, o[1]->z, o[2]->z);
     // Colours of o[], or the constant source (in0, or the provoking vertex when flat shading)
     // in every slot.
-    const bool colConst = !rp.gouraud || (std::memcmp(in0.color, in1.color, 4) == 0 &&
-                                          std::memcmp(in1.color, in2.color, 4) == 0);
-    const bool secConst = !rp.gouraud || (std::memcmp(in0.secondary, in1.secondary, 3) == 0 &&
-                                          std::memcmp(in1.secondary, in2.secondary, 3) == 0);
-    const soft::ScreenVertex& cs = rp.gouraud ? in0 : prov;
+    const soft::TriangleConstants same = soft::triangleConstants(rp, in0, in1, in2, prov);
+    const bool colConst = same.color, secConst = same.secondary;
+    const soft::ScreenVertex& cs = *same.source;
     for (int i = 0; i < 3; ++i) {
         putU32(r, T::kColors, i, packColor((colConst ? cs : *o[i]).color, 4));
         putU32(r, T::kSecondary, i, packColor((secConst ? cs : *o[i]).secondary, 3));
@@ -111,7 +109,7 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
 
     // Fog is interpolated unless fog is off or no vertex is fogged (then the byte is 255).
     putU32(r, T::kHeader, 1, 255u);
-    if (rp.fog && !(in0.fog >= 1.0f && in1.fog >= 1.0f && in2.fog >= 1.0f)) {
+    if (!same.fog) {
         flags |= T::kFlagFogVaries;
         for (int i = 0; i < 3; ++i) putF32(r, T::kFog, i, o[i]->fog);
     }
