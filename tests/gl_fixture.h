@@ -4,8 +4,10 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "hle/ge_engine.h"
 #include "hle/list_builder.h"
@@ -18,6 +20,19 @@ constexpr u32 kFbOffset = 0x000000;   // frame buffer at VRAM start
 constexpr u32 kZOffset = 0x100000;    // depth buffer
 constexpr u32 kStride = 64;           // pixels
 constexpr int kSize = 64;
+
+// Runs `build` (FINISH appended) through a GeEngine with renderer `r` on `mem` and returns the
+// whole of VRAM after flushToMemory() (the differential GL ↔ software-model tests).
+inline std::vector<u8> runListVram(Memory& mem, Renderer& r, const std::function<void(ListBuilder&)>& build) {
+    GeEngine eng(mem, &r);
+    ListBuilder b(&mem);
+    build(b);
+    b.finish();
+    eng.startList(b.placeList(), 0);
+    eng.run();
+    r.flushToMemory();
+    return std::vector<u8>(mem.vram(), mem.vram() + Memory::kVramSize);
+}
 
 // Destination-read path under test.
 enum class GlPath { FbFetch, Barrier, Baseline };

@@ -34,14 +34,7 @@ bool render(bool gl, GlPath path, bool floatInterp, const Build& build, std::vec
         so.threads = 1;
         r = soft::createSoftRenderer(mem, so);
     }
-    GeEngine eng(mem, r.get());
-    ListBuilder b(&mem);
-    build(b);
-    b.finish();
-    eng.startList(b.placeList(), 0);
-    eng.run();
-    r->flushToMemory();
-    vram.assign(mem.vram(), mem.vram() + 0x200000);
+    vram = runListVram(mem, *r, build);
     return true;
 }
 

@@ -190,25 +190,29 @@ void buildCacheScene(GlScene& s) {
 class GlCacheScene : public GlScene {
 public:
     void TestBody() override {}
+    // A renderer with `opt` on fresh memory, then buildCacheScene run on it; false (with err)
+    // when no GL context can be created.
+    bool render(const gl::GlOptions& opt, std::string& err) {
+        mem = std::make_unique<Memory>();
+        renderer = gl::createGlRenderer(*mem, opt, err);
+        if (!renderer) return false;
+        engine = std::make_unique<GeEngine>(*mem, renderer.get());
+        b = std::make_unique<ListBuilder>(mem.get());
+        buildCacheScene(*this);
+        run();
+        return true;
+    }
 };
 
 TEST(GlProgramCache, SecondRendererCompilesNothing) {
     const fs::path dir = freshDir("progcache");
     u32 firstPixels[4] = {};
     for (int pass = 0; pass < 2; ++pass) {
-        auto mem = std::make_unique<Memory>();
         gl::GlOptions opt;
         opt.programCacheDir = dir.string();
         std::string err;
-        auto r = gl::createGlRenderer(*mem, opt, err);
-        if (!r) GTEST_SKIP() << "no GL context: " << err;
         GlCacheScene s;
-        s.mem = std::move(mem);
-        s.renderer = std::move(r);
-        s.engine = std::make_unique<GeEngine>(*s.mem, s.renderer.get());
-        s.b = std::make_unique<ListBuilder>(s.mem.get());
-        buildCacheScene(s);
-        s.run();
+        if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
         const gl::GlStats st = gl::glStats(*s.renderer);
         const u32 px[4] = {s.px32(4, 4), s.px32(20, 20), s.px32(40, 40), s.px32(60, 60)};
         if (pass == 0) {
@@ -225,19 +229,11 @@ TEST(GlProgramCache, SecondRendererCompilesNothing) {
 
 TEST(GlProgramCache, ShaderDumpWritesSources) {
     const fs::path dir = freshDir("shaderdump");
-    auto mem = std::make_unique<Memory>();
     gl::GlOptions opt;
     opt.shaderDumpDir = dir.string();
     std::string err;
-    auto r = gl::createGlRenderer(*mem, opt, err);
-    if (!r) GTEST_SKIP() << "no GL context: " << err;
     GlCacheScene s;
-    s.mem = std::move(mem);
-    s.renderer = std::move(r);
-    s.engine = std::make_unique<GeEngine>(*s.mem, s.renderer.get());
-    s.b = std::make_unique<ListBuilder>(s.mem.get());
-    buildCacheScene(s);
-    s.run();
+    if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
     int frags = 0, verts = 0;
     for (auto& e : fs::directory_iterator(dir)) {
         frags += e.path().extension() == ".frag";
@@ -257,19 +253,11 @@ TEST(GlProgramCache, ShaderDumpWritesSources) {
 TEST(GlContext, EglSurfacelessRendersLikeOsmesa) {
     u32 pixels[2][2] = {};
     for (int kind = 0; kind < 2; ++kind) {
-        auto mem = std::make_unique<Memory>();
         gl::GlOptions opt;
         opt.context = kind ? gl::ContextKind::EGL : gl::ContextKind::OSMesa;
         std::string err;
-        auto r = gl::createGlRenderer(*mem, opt, err);
-        if (!r) GTEST_SKIP() << (kind ? "EGL" : "OSMesa") << " unavailable: " << err;
         GlCacheScene s;
-        s.mem = std::move(mem);
-        s.renderer = std::move(r);
-        s.engine = std::make_unique<GeEngine>(*s.mem, s.renderer.get());
-        s.b = std::make_unique<ListBuilder>(s.mem.get());
-        buildCacheScene(s);
-        s.run();
+        if (!s.render(opt, err)) GTEST_SKIP() << (kind ? "EGL" : "OSMesa") << " unavailable: " << err;
         pixels[kind][0] = s.px32(4, 4);
         pixels[kind][1] = s.px32(20, 20);
         // glFrameTexture gives a presentable texture name.

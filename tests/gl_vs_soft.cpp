@@ -19,7 +19,7 @@ struct Frame {
     std::vector<u8> vram;
 };
 
-// Runs `build` on a fresh Memory with the given backend; returns the first 64 rows of VRAM.
+// Runs `build` on a fresh Memory with the given backend; returns the whole of VRAM.
 bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& out, std::string& err) {
     Memory mem;
     std::unique_ptr<Renderer> r;
@@ -31,15 +31,7 @@ bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& 
         so.threads = 1;
         r = soft::createSoftRenderer(mem, so);
     }
-    GeEngine eng(mem, r.get());
-    ListBuilder b(&mem);
-    build(b);
-    b.finish();
-    const u32 list = b.placeList();
-    eng.startList(list, 0);
-    eng.run();
-    r->flushToMemory();
-    out.vram.assign(mem.vram(), mem.vram() + 0x200000);
+    out.vram = runListVram(mem, *r, build);
     return true;
 }
 
