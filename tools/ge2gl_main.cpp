@@ -258,9 +258,9 @@ int main(int argc, char** argv) {
 
     std::string renderFile, outPng, depthOut, vramOut;
     bool stats = false;
-    auto* render = app.add_subcommand("render", "replay a dump and write the displayed frame as PNG");
+    auto* render = app.add_subcommand("render", "replay a dump and write the displayed frame as an image");
     render->add_option("DUMP", renderFile)->required();
-    render->add_option("-o,--output", outPng, "output PNG (480x272)")->required();
+    render->add_option("-o,--output", outPng, "output image, 480x272 (.png; other extensions through OpenImageIO)")->required();
     render->add_option("--depth-out", depthOut, "write u32 width, u32 height, u16 depth per pixel");
     render->add_option("--vram-out", vramOut, "write the 2 MiB of VRAM after the frame");
     render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw");
