@@ -1,7 +1,9 @@
 // Clipping and discard rules of the software model (manual §10; ge-reference.md §8.5).
 //
-//  - The only geometric clipping is against the near plane (z < −w), and only with CMD_CLE = 1;
-//    there is no X/Y clipping (drawing is limited by the scissor instead).
+//  - The only geometric clipping is against the near plane (z < −w), whatever CMD_CLE says: CLE
+//    selects only the depth clamp and the discard rule (§8.5, corrected; PPSSPP's
+//    Clipper::ProcessTriangle/ProcessLine clip on negative Z in both cases). There is no X/Y
+//    clipping (drawing is limited by the scissor instead).
 //  - A vertex outside screen X/Y [0, 4096) drops the whole primitive (CLE = 1 exempts vertices
 //    whose Z was clamped); with CLE = 0 so does a screen Z outside [0, 65536).
 //  - CLE = 0: any vertex with |z/w| ≥ 1.00003 drops the primitive. CLE = 1: only when all its

@@ -398,7 +398,9 @@ struct SoftRenderer::Impl {
                 ++stats.discarded;
                 return;
             }
-            if (ts->clipEnable && (beyondNear(a) || beyondNear(b) || beyondNear(c))) {
+            // Near clipping whatever CLE says: CLE selects only the depth clamp and the discard
+            // rule (ge-reference §8.5, corrected; PPSSPP Clipper::ProcessTriangle).
+            if (beyondNear(a) || beyondNear(b) || beyondNear(c)) {
                 ClipVertex poly[4];
                 const int n = clipTriangleNear(*ts, a, b, c, poly);
                 ++stats.clipped;
@@ -434,7 +436,7 @@ struct SoftRenderer::Impl {
             ++stats.discarded;
             return;
         }
-        if (!ts->through && ts->clipEnable && (beyondNear(*v[0]) || beyondNear(*v[1]))) {
+        if (!ts->through && (beyondNear(*v[0]) || beyondNear(*v[1]))) {  // whatever CLE says (§8.5)
             ClipVertex a = *v[0], b = *v[1];
             ++stats.clipped;
             if (!clipLineNear(*ts, a, b)) return;

@@ -26,7 +26,7 @@ struct ClipVertex {
 // Per-draw constants derived once from GeState.
 struct TransformState {
     bool through = false;
-    bool clipEnable = false;  // CMD_CLE: near clipping and depth clamp (§8.5)
+    bool clipEnable = false;  // CMD_CLE: depth clamp and the discard rule (§8.5); not near clipping
     float world[12] = {}, view[12] = {}, proj[16] = {}, tgen[12] = {};
     float sx = 0, sy = 0, sz = 0, tx = 0, ty = 0, tz = 0;
     int offX16 = 0, offY16 = 0;  // OFFSETX/OFFSETY in 1/16 pixel

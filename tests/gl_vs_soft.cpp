@@ -11,6 +11,7 @@
 
 #include "softmodel/soft_renderer.h"
 #include "tests/gl_fixture.h"
+#include "tests/near_clip_scene.h"
 
 namespace ge::gltest {
 namespace {
@@ -196,6 +197,24 @@ TEST(GlVsSoft, LitPerspectiveMeshMatchesWithinInterpolation) {
     // 16-bit output: a one-step difference in an 8-bit colour before truncation shows as at most
     // one step of the stored field, i.e. a byte difference of up to 0x08 in the packed pixel.
     expectSame(litMesh, 0x21, 64 * 64 * 2 / 50);
+}
+
+// A vertex behind the camera passing CLE = 0's discard rule: both backends near-clip it with
+// either CLE value and draw the clipped quadrilateral (tests/near_clip_scene.h).
+TEST(GlVsSoft, NearClippingWhateverCleSays) {
+    for (bool cle : {false, true}) {
+        SCOPED_TRACE(cle ? "CLE = 1" : "CLE = 0");
+        auto build = [cle](ListBuilder& b) { testscene::nearClipScene(b, cle); };
+        Frame g, s;
+        std::string err;
+        if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
+        ASSERT_TRUE(renderWith(false, build, s, err));
+        for (const auto& p : testscene::kNearClipProbes) {
+            const size_t at = (size_t(p.y) * 512 + size_t(p.x)) * 4;
+            EXPECT_EQ(readLE32(&g.vram[at]) & 0xFFFFFF, p.covered ? 0xFFFFFFu : 0u) << "GL " << p.x << "," << p.y;
+            EXPECT_EQ(readLE32(&s.vram[at]) & 0xFFFFFF, p.covered ? 0xFFFFFFu : 0u) << "soft " << p.x << "," << p.y;
+        }
+    }
 }
 
 }  // namespace

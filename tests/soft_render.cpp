@@ -11,6 +11,7 @@
 #include "hle/ge_engine.h"
 #include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
+#include "tests/near_clip_scene.h"
 
 using namespace ge;
 using namespace ge::soft;
@@ -169,7 +170,8 @@ TEST(SoftRender, StripContinuesAcrossPrimType7) {
     EXPECT_TRUE(whole.run(1) == split.run(1));
 }
 
-TEST(SoftRender, NearPlaneClippingOnlyWithCle) {
+// CLE = 0 drops a triangle with a vertex outside |z/w| < 1; CLE = 1 keeps it and clips it.
+TEST(SoftRender, NearVertexDroppedWithoutCleClippedWithIt) {
     auto draw = [](bool cle) {
         Scene s;
         const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -195,6 +197,29 @@ TEST(SoftRender, NearPlaneClippingOnlyWithCle) {
     const int clipped = draw(true);
     EXPECT_GT(clipped, 1000);
     EXPECT_LT(clipped, 240 * 136 / 2);  // less than the unclipped triangle
+}
+
+// A vertex behind the camera that passes CLE = 0's discard rule is near-clipped with either CLE
+// value (tests/near_clip_scene.h).
+TEST(SoftRender, NearClippingWhateverCleSays) {
+    for (bool cle : {false, true}) {
+        SCOPED_TRACE(cle ? "CLE = 1" : "CLE = 0");
+        Memory mem{16u << 20};
+        ListBuilder b(&mem);
+        testscene::nearClipScene(b, cle);
+        b.finish();
+        SoftOptions o;
+        o.threads = 1;
+        auto r = createSoftRenderer(mem, o);
+        GeEngine eng(mem, r.get());
+        eng.startList(b.placeList(), 0);
+        ASSERT_EQ(eng.run(), RunStatus::Completed);
+        r->flushToMemory();
+        for (const auto& p : testscene::kNearClipProbes) {
+            const u32 c = mem.read32(Memory::kVramBase + (u32(p.y) * 512 + u32(p.x)) * 4) & 0xFFFFFF;
+            EXPECT_EQ(c, p.covered ? 0xFFFFFFu : 0u) << p.x << "," << p.y;
+        }
+    }
 }
 
 TEST(SoftRender, ImmediateVertices) {

@@ -273,7 +273,8 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
     if (!a.valid || !b.valid || !c.valid || soft::discardPrimitive(ts_, v, 3)) return;
     if (!ts_.through) {
         if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ref §8.5
-        if (ts_.clipEnable && (soft::beyondNear(a) || soft::beyondNear(b) || soft::beyondNear(c))) {
+        // Near clipping whatever CLE says, as the software model (ge-reference §8.5).
+        if (soft::beyondNear(a) || soft::beyondNear(b) || soft::beyondNear(c)) {
             soft::ClipVertex poly[4];
             const int n = soft::clipTriangleNear(ts_, a, b, c, poly);
             int join = 0;
@@ -326,7 +327,7 @@ void VertexPipeline::line(u32 ia, u32 ib) {
     const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
     if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
     soft::ClipVertex a = *v[0], b = *v[1];
-    if (!ts_.through && ts_.clipEnable && (soft::beyondNear(a) || soft::beyondNear(b)))
+    if (!ts_.through && (soft::beyondNear(a) || soft::beyondNear(b)))
         if (!soft::clipLineNear(ts_, a, b)) return;
     fragBuf_.resize(kFragmentBuffer);
     soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);

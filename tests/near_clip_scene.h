@@ -1,0 +1,54 @@
+// A triangle with one vertex behind the camera (w < 0) that still passes CLE = 0's discard rule
+// (|z/w| < 1, screen X/Y/Z in range): near clipping happens whatever CLE says (ge-reference §8.5,
+// corrected; PPSSPP Clipper::ProcessTriangle), so both CLE values draw the clipped quadrilateral,
+// never the inverted triangle the unclipped vertex projects to. Shared by the software-model and
+// GL tests.
+//
+// Projection: x_c = x, y_c = y, z_c = −0.25, w = z. A (−0.5, −0.5, 1) and B (0.5, −0.5, 1) are in
+// front; C (0, 0.9, −0.5) is behind the camera. The near plane z_c = −w cuts AC and BC halfway, at
+// w = 0.25: A' = (−0.25, 0.2) → screen (0, 27.2), B' → (480, 27.2). A and B land at (120, 204) and
+// (360, 204). Clipped: the quadrilateral A B B' A' (rows 28–203). Unclipped, C would project to
+// (240, 380.8) and the triangle would cover rows 204 and below instead.
+#pragma once
+#include "hle/list_builder.h"
+
+namespace ge::testscene {
+
+inline void nearClipScene(ListBuilder& b, bool cle) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 512);
+    b.depthBuffer(0x88000, 512);
+    b.scissor(0, 0, 480, 272);
+    b.region(0, 0, 480, 272);
+    b.offset(2048 - 240, 2048 - 136);
+    b.viewport(2048, 2048, 480, 272);
+    b.depthRange(65535, 0);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    b.setMatrix(GeMatrix::World, id);
+    b.setMatrix(GeMatrix::View, id);
+    // Column-major: column 2 (z) feeds w, column 3 (translation) gives z_c = −0.25.
+    const float proj[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, -0.25f, 0};
+    b.setMatrix(GeMatrix::Proj, proj);
+    b.enable(GE_CMD_CLE, cle);
+    b.enable(GE_CMD_BCE, false);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+    BuildVertex v[3];
+    v[0].x = -0.5f, v[0].y = -0.5f, v[0].z = 1.0f;
+    v[1].x = 0.5f, v[1].y = -0.5f, v[1].z = 1.0f;
+    v[2].x = 0.0f, v[2].y = 0.9f, v[2].z = -0.5f;
+    const auto bytes = packVertices(vtype, v, 3);
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 3, nullptr, bytes.data());
+}
+
+// Pixels of the 512-stride 8888 frame at VRAM offset 0 the scene must (not) cover.
+struct ClipProbe {
+    int x, y;
+    bool covered;
+};
+inline constexpr ClipProbe kNearClipProbes[] = {
+    {240, 120, true}, {240, 30, true}, {10, 30, true}, {470, 30, true},  // inside A B B' A'
+    {10, 200, false}, {240, 20, false},                                   // outside its edges
+    {240, 210, false}, {240, 240, false},                                 // where the inverted one would be
+};
+
+}  // namespace ge::testscene
