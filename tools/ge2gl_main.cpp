@@ -109,6 +109,10 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
                     (unsigned long long)out.replay.draws, (unsigned long long)s.commands, (unsigned long long)s.prims,
                     (unsigned long long)s.patches, (unsigned long long)s.vertices, (unsigned long long)s.transfers,
                     (unsigned long long)s.clutLoads, (unsigned long long)s.stateChanges, out.seconds);
+        const dump::ReplayResult& r = out.replay;
+        std::printf("replay timing: %s\nreplay syncs: %llu\nslab maps: %llu\nextra maps: %llu\nlist wraps: %llu\n",
+                    dump::replayTimingName(opt.replayTiming), (unsigned long long)r.syncs,
+                    (unsigned long long)r.slabMaps, (unsigned long long)r.extraMaps, (unsigned long long)r.listWraps);
         if (!out.backendStats.empty()) std::printf("%s", out.backendStats.c_str());
     }
     return 0;
@@ -239,7 +243,12 @@ int main(int argc, char** argv) {
     app.set_version_flag("--version", "ge2gl 0.1.0");
 
     tools::RenderOptions ropt;
+    std::string replayTiming = "ppsspp";
     auto addBackendOpts = [&](CLI::App* sc) {
+        sc->add_option("--replay-timing", replayTiming,
+                       "when the GE runs during replay: ppsspp (as PPSSPP's player: at its sync points; "
+                       "dumps PPSSPP recorded) | eager (after every REGISTERS block; dumps from other tools)")
+            ->check(CLI::IsMember({"ppsspp", "eager"}));
         sc->add_option("--backend", ropt.backend, "soft | gl | null")->check(CLI::IsMember({"soft", "gl", "null"}));
         sc->add_option("--threads", ropt.threads, "software model threads (0 = all cores)");
         sc->add_option("--context", ropt.glContext, "GL context: osmesa | egl");
@@ -294,6 +303,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "ge2gl: %s\n", e.what());
         return 2;
     }
+    dump::parseReplayTiming(replayTiming, ropt.replayTiming);
     if (*info) return cmdInfo(infoFiles);
     if (*disasm) return cmdDisasm(disasmFile);
     if (*render) return cmdRender(renderFile, ropt, outPng, depthOut, vramOut, stats);

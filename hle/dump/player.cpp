@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
-#include <tuple>
+#include <cstring>
 #include <vector>
+
+#include "hle/dump/replay_memory.h"
 
 namespace ge::dump {
 
@@ -12,32 +13,36 @@ namespace {
 
 bool isKick(u8 op) { return op == GE_CMD_PRIM || op == GE_CMD_BEZIER || op == GE_CMD_SPLINE; }
 
-constexpr u32 kListBase = 0x08000000;       // 1 MiB display-list buffer
-constexpr u32 kListEnd = 0x08100000;
-constexpr u32 kArenaBase = kListEnd;        // payloads from here to the end of RAM
-constexpr u32 kSlabSize = 1u << 20;         // PPSSPP's push-buffer mapping granularity
-constexpr u32 kTailMax = 64u << 10;         // bytes after a texture/CLUT payload kept readable
+// PPSSPP's player: a 256 KiB list buffer from the top of user memory, payloads mapped from the
+// bottom (replay_memory.h). User memory is that of a 32 MiB PSP: 0x08800000–0x0A000000.
+constexpr u32 kUserBase = 0x08800000, kUserEnd = 0x0A000000;
+constexpr u32 kListBufSize = 256u << 10;
+// Commands one catch-up may run: a list buffer's worth and some. A sound dump never needs more
+// (the buffer wraps, and runs, before it fills); a corrupt loop ends as a list error.
+constexpr u64 kRunBudget = kListBufSize / 4 + 4096;
 
 u32 cmd(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
 
 class Replayer {
 public:
     Replayer(const Dump& d, ReplayTarget& t, const ReplayOptions& opt, ReplayResult& res)
-        : d_(d), t_(t), opt_(opt), res_(res) {}
+        : d_(d), t_(t), opt_(opt), res_(res),
+          heap_(kUserBase, std::min<u32>(kUserEnd, Memory::kRamBase + t.ramSize())),
+          mapper_(d.pushbuf, t, heap_) {}
 
     bool play(std::string& err);
 
 private:
-    // Copies a payload into free guest RAM, 4- or 16-byte aligned; identical payloads share one
-    // copy. Returns 0 when it does not fit. With `withTail`, the push-buffer bytes that follow the
-    // payload (to the end of its 1 MiB slab, at most kTailMax) are copied after it: PPSSPP's player
-    // maps whole 1 MiB slabs of the push buffer into guest memory, so a texture read past its
-    // recorded size (a DXT texture whose rows run beyond bufw, NFS Carbon) sees the dump's next
-    // bytes, and the references were rendered that way. A payload that straddles two slabs gets
-    // an exact copy there too, so it gets no tail here.
-    u32 place(const Record& r, u32 align, bool withTail = false);
-    void appendWords(const std::vector<u32>& words);
-    void runSoFar();
+    u32 map(const Record& r) {
+        const u32 a = mapper_.map(r.ptr, r.size, [this] { sync(); });
+        if (!a) warn(std::string("no guest memory left for a ") + recordTypeName(r.type) + " payload");
+        return a;
+    }
+    void registers(const Record& r, const u8* p);
+    void appendToList(const std::vector<u32>& words);
+    void wrapList();
+    void sync();
+    void endList();
     void hostWrite(u32 addr, const u8* data, u32 size) {
         if (t_.write(addr, data, size) < size) warn("a VRAM copy in the dump runs past the end of memory");
     }
@@ -60,11 +65,12 @@ private:
     ReplayTarget& t_;
     const ReplayOptions& opt_;
     ReplayResult& res_;
+    GuestHeap heap_;
+    PushbufMapper mapper_;
 
-    std::vector<u32> pending_;
-    u32 writePos_ = kListBase;
-    u32 arenaPos_ = kArenaBase;
-    std::map<std::tuple<u32, u32, u32>, u32> placed_;
+    std::vector<u32> pending_;  // words queued by data records for the next REGISTERS block
+    u32 listBuf_ = 0;           // 0 until the first REGISTERS block (as PPSSPP)
+    u32 pos_ = 0;               // where the next word goes
     u32 lastTex_[8] = {}, lastBufw_[8] = {};
     u32 lastBase_ = ~0u;  // unknown
     bool clutAddrPending_ = false;
@@ -74,62 +80,12 @@ private:
     bool stopped_ = false;  // --replay-end reached
 };
 
-u32 Replayer::place(const Record& r, u32 align, bool withTail) {
-    const u8* p = d_.payload(r);
-    if (!p) return 0;
-    auto key = std::make_tuple(r.ptr, r.size, align);
-    if (auto it = placed_.find(key); it != placed_.end()) return it->second;
-    u32 tail = 0;
-    if (withTail && r.size) {
-        const u64 end = u64(r.ptr) + r.size;  // payload() checked it lies in pushbuf
-        const u64 slabEnd = (u64(r.ptr) / kSlabSize + 1) * kSlabSize;
-        if ((end - 1) / kSlabSize == u64(r.ptr) / kSlabSize)
-            tail = u32(std::min<u64>({slabEnd, u64(d_.pushbuf.size()), end + kTailMax}) - end);
-    }
-    const u64 ramEnd = u64(Memory::kRamBase) + t_.ramSize();
-    u32 a = (arenaPos_ + align - 1) & ~(align - 1);
-    if (u64(a) + r.size + tail > ramEnd) {
-        // Wrap around: everything placed before has been consumed by the list already run
-        // (each REGISTERS block runs at once), except the pending block's own data.
-        placed_.clear();
-        a = kArenaBase;
-        if (u64(a) + r.size > ramEnd) return 0;
-        tail = u32(std::min<u64>(tail, ramEnd - a - r.size));
-    }
-    t_.write(a, p, r.size + tail);
-    arenaPos_ = a + r.size + tail;
-    placed_[key] = a;
-    return a;
-}
-
-void Replayer::appendWords(const std::vector<u32>& words) {
-    size_t i = 0;
-    while (i < words.size()) {
-        // Room for a chunk plus the BASE + JUMP that wrap the buffer.
-        u32 room = (kListEnd - writePos_) / 4;
-        if (room <= 2) {
-            writeWord(writePos_, cmd(GE_CMD_BASE, (kListBase >> 8) & 0xFF0000));
-            writeWord(writePos_ + 4, cmd(GE_CMD_JUMP, kListBase & 0xFFFFFF));
-            writePos_ = kListBase;
-            lastBase_ = kListBase >> 24;
-            // Let the GE follow the jump before the start of the buffer is overwritten.
-            t_.runTo(writePos_, 16);
-            continue;
-        }
-        size_t n = std::min<size_t>(words.size() - i, room - 2);
-        std::vector<u8> bytes(4 * n);
-        for (size_t k = 0; k < n; ++k) writeLE32(&bytes[4 * k], words[i + k]);
-        t_.write(writePos_, bytes.data(), u32(bytes.size()));
-        writePos_ += u32(4 * n);
-        i += n;
-        if (i < words.size()) runSoFar();
-    }
-}
-
-void Replayer::runSoFar() {
-    // Blocks never branch backwards in a sound dump; a generous budget turns a corrupt loop into
-    // an error instead of a hang.
-    RunStatus s = t_.runTo(writePos_, u64(kListEnd - kListBase) / 4 * 4 + 4096);
+// "Run the list so far": move the stall address to the end of what was written and let the GE
+// catch up (PPSSPP DumpExecute::SyncStall; nothing before the list exists).
+void Replayer::sync() {
+    if (!listBuf_) return;
+    ++res_.syncs;
+    const RunStatus s = t_.runTo(pos_, kRunBudget);
     if (s == RunStatus::Stalled) return;
     ++res_.listErrors;
     char buf[160];
@@ -138,7 +94,101 @@ void Replayer::runSoFar() {
                   s == RunStatus::Error ? t_.lastError().c_str() : "");
     warn(buf);
     // Restart the list where the player writes next, keeping all state.
-    t_.startList(writePos_, writePos_);
+    t_.startList(pos_, pos_);
+}
+
+// BASE + JUMP back to the start of the buffer, then a catch-up: the GE follows the jump and stalls
+// at the start before the player writes over what it has run (DumpExecute::Registers).
+void Replayer::wrapList() {
+    writeWord(pos_, cmd(GE_CMD_BASE, (listBuf_ >> 8) & 0xFF0000));
+    writeWord(pos_ + 4, cmd(GE_CMD_JUMP, listBuf_ & 0xFFFFFF));
+    pos_ = listBuf_;
+    lastBase_ = listBuf_ >> 24;
+    ++res_.listWraps;
+    sync();
+}
+
+void Replayer::appendToList(const std::vector<u32>& words) {
+    const u32 end = listBuf_ + kListBufSize;
+    // PPSSPP wraps when the words and 8 bytes for the next BASE + JUMP would reach the end.
+    if (u64(pos_) + 4 * u64(words.size()) + 8 >= end) wrapList();
+    size_t i = 0;
+    while (i < words.size()) {
+        // A block larger than the whole buffer (PPSSPP would write past its end): written in
+        // pieces, the list wrapping (and running) between them.
+        const size_t room = (end - pos_ - 12) / 4;
+        if (room == 0) {
+            wrapList();
+            continue;
+        }
+        const size_t n = std::min(words.size() - i, room);
+        std::vector<u8> bytes(4 * n);
+        for (size_t k = 0; k < n; ++k) writeLE32(&bytes[4 * k], words[i + k]);
+        t_.write(pos_, bytes.data(), u32(bytes.size()));
+        pos_ += u32(4 * n);
+        i += n;
+        if (i < words.size()) wrapList();
+    }
+}
+
+void Replayer::registers(const Record& r, const u8* p) {
+    if (!listBuf_) {
+        // The list starts with one NOP, enqueued stalled at its end (§6.1).
+        listBuf_ = heap_.alloc(kListBufSize, true);
+        if (!listBuf_) {
+            warn("no guest memory for the display list");
+            return;
+        }
+        pos_ = listBuf_;
+        writeWord(pos_, 0);
+        pos_ += 4;
+        t_.startList(listBuf_, pos_);
+        t_.runTo(pos_, 16);
+    }
+    std::vector<u32> words;
+    words.swap(pending_);
+    const u32 n = r.size / 4;
+    words.reserve(words.size() + n);
+    for (u32 i = 0; i < n; ++i) {
+        u32 w = readLE32(p + 4 * i);
+        const u8 op = u8(w >> 24);
+        if (op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) {
+            w = 0;  // texture addresses come from the data records
+        } else if (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) {
+            const int lv = op - GE_CMD_TBW0;
+            const u32 width = w & 0xFFFF;
+            if (width == lastBufw_[lv]) w = 0;
+            else w = cmd(op, ((lastTex_[lv] >> 8) & 0xFF0000) | width);
+            lastBufw_[lv] = width;
+        } else if (op == GE_CMD_SIGNAL || op == GE_CMD_BASE) {
+            lastBase_ = ~0u;
+        }
+        words.push_back(w);
+        if (isKick(op)) {
+            ++kicks_;
+            if (opt_.replayEnd && kicks_ >= opt_.replayEnd) {
+                stopped_ = true;
+                break;
+            }
+        }
+    }
+    appendToList(words);
+    if (opt_.timing == ReplayTiming::Eager) sync();
+}
+
+// §6.3 as PPSSPP's SubmitListEnd: FINISH + END (words still queued by data records after the
+// last block are dropped), run to completion.
+void Replayer::endList() {
+    if (!listBuf_) return;
+    writeWord(pos_, cmd(GE_CMD_FINISH, 0));
+    writeWord(pos_ + 4, cmd(GE_CMD_END, 0));
+    pos_ += 8;
+    ++res_.syncs;
+    const RunStatus s = t_.runTo(pos_, kRunBudget);
+    if (s != RunStatus::Completed) {
+        ++res_.listErrors;
+        warn(std::string("final list ended as '") + runStatusName(s) + "'");
+    }
 }
 
 bool Replayer::play(std::string& err) {
@@ -146,57 +196,45 @@ bool Replayer::play(std::string& err) {
         err = "dump does not start with an INIT record";
         return false;
     }
-    // The first INIT is applied before the list starts, as a game restores a context before it
-    // enqueues (sceGeRestoreContext fails while the GE is drawing).
-    bool started = false;
-    auto startOnce = [&] {
-        if (started) return;
-        started = true;
-        // §6.1: the list starts with one NOP, stalled at its end.
-        writeWord(writePos_, 0);
-        writePos_ += 4;
-        t_.startList(kListBase, writePos_);
-        t_.runTo(writePos_, 16);
-    };
-
     const Record* prev = nullptr;
     for (size_t ri = 0; ri < d_.records.size() && !stopped_; ++ri) {
-        if (ri > 0) startOnce();
         const Record& r = d_.records[ri];
         ++res_.records;
         const u8* p = d_.payload(r);
-        if (!p && r.size) {
+        if (!p) {
             warn(std::string("record ") + recordTypeName(r.type) + " points outside the push buffer");
             prev = &r;
             continue;
         }
         const int texLevel = textureLevelOf(r.type), fbLevel = framebufLevelOf(r.type);
         if (texLevel >= 0) {
-            u32 a = place(r, 16, true);
+            const u32 a = map(r);
             if (a && a != lastTex_[texLevel]) {
                 pending_.push_back(cmd(GE_CMD_TBW0 + texLevel, ((a >> 8) & 0xFF0000) | lastBufw_[texLevel]));
                 pending_.push_back(cmd(GE_CMD_TBP0 + texLevel, a & 0xFFFFFF));
                 lastTex_[texLevel] = a;
             }
         } else if (fbLevel >= 0) {
-            const u32 v = d_.payloadWord(r, 0), bufw = d_.payloadWord(r, 1), flags = d_.payloadWord(r, 2);
+            const u32 v = d_.payloadWord(r, 0), bufw = d_.payloadWord(r, 1) & 0xFFFF, flags = d_.payloadWord(r, 2);
             if (v != lastTex_[fbLevel] || bufw != lastBufw_[fbLevel]) {
-                pending_.push_back(cmd(GE_CMD_TBW0 + fbLevel, ((v >> 8) & 0xFF0000) | (bufw & 0xFFFF)));
+                pending_.push_back(cmd(GE_CMD_TBW0 + fbLevel, ((v >> 8) & 0xFF0000) | bufw));
                 pending_.push_back(cmd(GE_CMD_TBP0 + fbLevel, v & 0xFFFFFF));
                 lastTex_[fbLevel] = v;
                 lastBufw_[fbLevel] = bufw;
             }
-            // Flag bit 1 ("unchanged VRAM") is trustworthy from version 6 on (§3.3). Flag bit 0
-            // ("target": a buffer drawn earlier in this recording) is skipped too: both our backends
-            // keep what they drew, as PPSSPP's software renderer does (§6.2), and the recorded bytes
-            // would overwrite the frame with what the recording GPU had at that moment.
+            // Copied at once, without a sync: in PPSSPP timing these bytes land before draws
+            // recorded ahead of them that have not run. Flag bit 1 ("unchanged VRAM") is
+            // trustworthy from version 6 on (§3.3). Flag bit 0 ("target": a buffer drawn earlier
+            // in this recording) is skipped too: both our backends keep what they drew, as
+            // PPSSPP's software renderer does (§6.2).
             if (r.size > 16 && !(d_.version >= 6 && (flags & 2)) && !(flags & 1)) hostWrite(v, p + 16, r.size - 16);
         } else {
             switch (r.type) {
             case INIT: {
+                // Applied at once (PPSSPP: gstate.Restore), not through the list.
                 u32 ctx[512] = {};
                 if (r.size < kInitBytes) warn("short INIT record");
-                std::memcpy(ctx, p, std::min<u32>(r.size, kInitBytes));
+                if (r.size) std::memcpy(ctx, p, std::min<u32>(r.size, kInitBytes));
                 // The running list's OFFSET is its own, starting at 0 (§6.1).
                 ctx[7] = 0;
                 t_.loadContext(ctx);
@@ -204,45 +242,11 @@ bool Replayer::play(std::string& err) {
                 lastBase_ = ~0u;
                 break;
             }
-            case REGISTERS: {
-                std::vector<u32> words;
-                words.swap(pending_);
-                const u32 n = r.size / 4;
-                words.reserve(words.size() + n);
-                for (u32 i = 0; i < n; ++i) {
-                    u32 w = readLE32(p + 4 * i);
-                    const u8 op = u8(w >> 24);
-                    if (op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) {
-                        w = 0;  // texture addresses come from the data records
-                    } else if (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) {
-                        const int lv = op - GE_CMD_TBW0;
-                        const u32 width = w & 0xFFFF;
-                        if (width == lastBufw_[lv]) w = 0;
-                        else w = cmd(op, ((lastTex_[lv] >> 8) & 0xFF0000) | width);
-                        lastBufw_[lv] = width;
-                    } else if (op == GE_CMD_SIGNAL || op == GE_CMD_BASE) {
-                        lastBase_ = ~0u;
-                    }
-                    words.push_back(w);
-                    if (isKick(op)) {
-                        ++kicks_;
-                        if (opt_.replayEnd && kicks_ >= opt_.replayEnd) {
-                            stopped_ = true;
-                            break;
-                        }
-                    }
-                }
-                appendWords(words);
-                runSoFar();
-                break;
-            }
+            case REGISTERS: registers(r, p); break;
             case VERTICES:
             case INDICES: {
-                u32 a = place(r, 4);
-                if (!a) {
-                    warn("vertex/index data does not fit in guest RAM");
-                    break;
-                }
+                const u32 a = map(r);
+                if (!a) break;
                 queueBaseFor(a);
                 pending_.push_back(cmd(r.type == VERTICES ? GE_CMD_VADR : GE_CMD_IADR, a & 0xFFFFFF));
                 break;
@@ -254,10 +258,11 @@ bool Replayer::play(std::string& err) {
                 break;
             case CLUT:
                 if (clutAddrPending_) {
-                    if (!(clutFlags_ & 1)) hostWrite(clutAddr_, p, r.size);  // same rule as FRAMEBUF
+                    // At once, like FRAMEBUF data, and with the same rule for flag bit 0.
+                    if (!(clutFlags_ & 1)) hostWrite(clutAddr_, p, r.size);
                     clutAddrPending_ = false;
                 } else {
-                    u32 a = place(r, 16, true);
+                    const u32 a = map(r);
                     if (a) {
                         pending_.push_back(cmd(GE_CMD_CBW, (a >> 8) & 0xFF0000));
                         pending_.push_back(cmd(GE_CMD_CBP, a & 0xFFFFFF));
@@ -268,32 +273,37 @@ bool Replayer::play(std::string& err) {
                 }
                 break;
             case TRANSFERSRC: {
-                u32 a = place(r, 16);
-                runSoFar();
-                if (a) {
-                    const u32 xbw1 = t_.readRegister(GE_CMD_XBW1);
-                    pending_.push_back(cmd(GE_CMD_XBW1, (xbw1 & 0xFFFF) | ((a >> 8) & 0xFF0000)));
-                    pending_.push_back(cmd(GE_CMD_XBP1, a & 0xFFFFFF));
-                }
+                const u32 a = map(r);
+                if (!a) break;
+                // The XBW1 word of the state is needed: the GE must have run the block that set it.
+                sync();
+                const u32 xbw1 = t_.readRegister(GE_CMD_XBW1);
+                pending_.push_back(cmd(GE_CMD_XBW1, (xbw1 & 0xFFFF) | ((a >> 8) & 0xFF0000)));
+                pending_.push_back(cmd(GE_CMD_XBP1, a & 0xFFFFFF));
                 break;
             }
             case MEMSET: {
-                runSoFar();
+                // CPU writes to RAM are not replayed at all; to VRAM after a catch-up.
                 const u32 dest = d_.payloadWord(r, 0), value = d_.payloadWord(r, 1), size = d_.payloadWord(r, 2);
-                if (Memory::isVram(dest)) t_.fill(dest, u8(value), size);
+                if (Memory::isVram(dest)) {
+                    sync();
+                    t_.fill(dest, u8(value), size);
+                }
                 break;
             }
             case MEMCPYDEST: memcpyDest_ = d_.payloadWord(r, 0); break;
             case MEMCPYDATA:
-                runSoFar();
-                if (Memory::isVram(memcpyDest_)) hostWrite(memcpyDest_, p, r.size);
+                if (Memory::isVram(memcpyDest_)) {
+                    sync();
+                    hostWrite(memcpyDest_, p, r.size);
+                }
                 break;
             case EDRAMTRANS:
-                runSoFar();
+                sync();
                 if (!t_.setEdramTranslation(d_.payloadWord(r, 0))) warn("invalid eDRAM translation value");
                 break;
             case DISPLAY:
-                runSoFar();
+                sync();
                 res_.hasDisplay = true;
                 res_.displayAddr = d_.payloadWord(r, 0);
                 res_.displayStride = d_.payloadWord(r, 1);
@@ -310,24 +320,24 @@ bool Replayer::play(std::string& err) {
         }
         prev = &r;
     }
-    startOnce();
-    // §6.3: finish the list and wait for it.
-    std::vector<u32> tail;
-    tail.swap(pending_);
-    tail.push_back(cmd(GE_CMD_FINISH, 0));
-    tail.push_back(cmd(GE_CMD_END, 0));
-    appendWords(tail);
-    RunStatus s = t_.runTo(writePos_, u64(kListEnd - kListBase) / 4 * 4 + 4096);
-    if (s != RunStatus::Completed) {
-        ++res_.listErrors;
-        warn(std::string("final list ended as '") + runStatusName(s) + "'");
-    }
+    endList();
     res_.draws = kicks_;
+    res_.slabMaps = mapper_.stats().slabMaps;
+    res_.extraMaps = mapper_.stats().extraMaps;
     t_.finishFrame();
     return true;
 }
 
 }  // namespace
+
+const char* replayTimingName(ReplayTiming t) { return t == ReplayTiming::Eager ? "eager" : "ppsspp"; }
+
+bool parseReplayTiming(const std::string& s, ReplayTiming& out) {
+    if (s == "ppsspp") out = ReplayTiming::Ppsspp;
+    else if (s == "eager") out = ReplayTiming::Eager;
+    else return false;
+    return true;
+}
 
 DumpSummary summarize(const Dump& d) {
     DumpSummary s;

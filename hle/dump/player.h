@@ -17,9 +17,25 @@ struct DumpSummary {
 };
 DumpSummary summarize(const Dump& d);
 
+// When the GE runs during a replay (ppdmp-format.md §6.2 "When the GE runs").
+enum class ReplayTiming {
+    // As PPSSPP's player (GPU/Debugger/Playback.cpp DumpExecute): REGISTERS blocks are appended
+    // without moving the stall address; the GE catches up only at the player's sync points (a
+    // payload that needs a new slab or extra, TRANSFERSRC, the list-buffer wrap, MEMSET/MEMCPYDATA
+    // to VRAM, EDRAMTRANS, DISPLAY, the end). FRAMEBUF and VRAM CLUT bytes land at once, before
+    // draws recorded ahead of them that have not run. What dumps recorded by PPSSPP need.
+    Ppsspp,
+    // The list runs after every REGISTERS block: for dumps written by tools that expect each
+    // block to have executed before the next data record is applied.
+    Eager,
+};
+const char* replayTimingName(ReplayTiming t);
+bool parseReplayTiming(const std::string& s, ReplayTiming& out);
+
 struct ReplayOptions {
     // Stop after the Nth draw kick (PRIM/BEZIER/SPLINE, counted from 1); 0 = whole frame.
     u64 replayEnd = 0;
+    ReplayTiming timing = ReplayTiming::Ppsspp;
 };
 
 struct ReplayResult {
@@ -27,6 +43,8 @@ struct ReplayResult {
     u32 displayAddr = 0, displayStride = 512, displayFormat = GE_FORMAT_8888;
     u64 draws = 0, records = 0;
     u64 listErrors = 0;             // list errors met (the player restarts the list and goes on)
+    u64 syncs = 0;                  // times the GE was let catch up (stall address moved)
+    u64 slabMaps = 0, extraMaps = 0, listWraps = 0;  // push-buffer mappings, list-buffer wraps
     std::string warning;            // first non-fatal problem, if any
 };
 

@@ -58,6 +58,7 @@ bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out
     GeEngine eng(mem, r.get());
     dump::ReplayOptions ro;
     ro.replayEnd = opt.replayEnd;
+    ro.timing = opt.replayTiming;
     if (!dump::replayDump(d, eng, ro, out.replay, err)) return false;
     dump::displayedFramebuffer(out.replay, eng.state(), out.displayAddr, out.displayStride, out.displayFormat);
     out.frame = readFrame(mem, out.displayAddr, out.displayStride, out.displayFormat);

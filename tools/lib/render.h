@@ -13,6 +13,7 @@ namespace ge::tools {
 struct RenderOptions {
     std::string backend = "soft";  // "soft" | "gl" | "null"
     u64 replayEnd = 0;             // stop after the Nth draw (0 = all)
+    dump::ReplayTiming replayTiming = dump::ReplayTiming::Ppsspp;  // when the GE runs (player.h)
     int threads = 0;               // software model threads (0 = all cores)
     std::string glContext = "osmesa";  // "osmesa" | "egl"
     bool glBaseline = false;       // GL: force the GL 3.3 baseline paths
