@@ -35,6 +35,18 @@ void lerpVertex(const TransformState& ts, const ClipVertex& a, const ClipVertex&
 // winds negatively on screen it is rotated to start where clipping (c, b, a) would start.
 int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
                      ClipVertex out[4]);
+// The reference renderer clips a triangle of a strip or fan in the order it keeps the vertices in
+// (TransformUnit::SubmitPrimitive: strip vertex k in slot k mod 3; fan centre in slot 0, then odd
+// and even vertices in slots 1 and 2), handing that order and its reverse to
+// Clipper::ProcessTriangle. Which polygon vertex the clip starts at, and so the fan that splits
+// it and which pieces the screen-range rule drops, follow that order — not the winding order.
+// True when `ring` (a permutation of the winding order a, b, c) runs the other way round, so
+// the pieces of its clipped polygon are wound opposite to the primitive.
+inline bool ringReversed(const u32 ring[3], u32 a, u32 b) {
+    const int p = ring[0] == a ? 0 : (ring[1] == a ? 1 : 2);
+    return ring[(p + 1) % 3] != b;
+}
+
 // Clips a line to z ≥ −w in place; false when nothing is left.
 bool clipLineNear(const TransformState& ts, ClipVertex& a, ClipVertex& b);
 

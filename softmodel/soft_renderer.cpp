@@ -401,8 +401,11 @@ struct SoftRenderer::Impl {
             // Near clipping whatever CLE says: CLE selects only the depth clamp and the discard
             // rule (ge-reference §8.5, corrected; PPSSPP Clipper::ProcessTriangle).
             if (beyondNear(a) || beyondNear(b) || beyondNear(c)) {
+                // Clipped in the reference's vertex order (the strip/fan ring, clip.h).
+                const bool reversed = ring && ringReversed(ring, ia, ib);
                 ClipVertex poly[4];
-                const int n = clipTriangleNear(*ts, a, b, c, poly);
+                const int n = ring ? clipTriangleNear(*ts, cverts[ring[0]], cverts[ring[1]], cverts[ring[2]], poly)
+                                   : clipTriangleNear(*ts, a, b, c, poly);
                 ++stats.clipped;
                 if (n < 3) return;
                 // Flat shading keeps the original provoking vertex's colour.
@@ -410,7 +413,8 @@ struct SoftRenderer::Impl {
                 u32 idx[4];
                 bool pushed[4] = {};
                 for (int k = 1; k + 1 < n; ++k) {
-                    if (culled(poly[0].sv, poly[k].sv, poly[k + 1].sv)) {
+                    const int k1 = reversed ? k + 1 : k, k2 = reversed ? k : k + 1;  // primitive's winding
+                    if (culled(poly[0].sv, poly[k1].sv, poly[k2].sv)) {
                         ++stats.culled;
                         continue;
                     }

@@ -217,5 +217,24 @@ TEST(GlVsSoft, NearClippingWhateverCleSays) {
     }
 }
 
+// Fan triangles near-clipped in the reference's slot order, on both backends (near_clip_scene.h).
+TEST(GlVsSoft, NearClippedFanFollowsTheReferenceVertexOrder) {
+    using namespace testscene;
+    for (bool asTriangles : {false, true}) {
+        SCOPED_TRACE(asTriangles ? "triangle list" : "fan");
+        auto build = [asTriangles](ListBuilder& b) { nearClipFanScene(b, asTriangles); };
+        Frame g, s;
+        std::string err;
+        if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
+        ASSERT_TRUE(renderWith(false, build, s, err));
+        auto rgb = [](const Frame& f, int x, int y) { return readLE32(&f.vram[(size_t(y) * 512 + size_t(x)) * 4]) & 0xFFFFFF; };
+        const u32 wedge = asTriangles ? 0xFFFFFFu : 0u;
+        EXPECT_EQ(rgb(g, kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
+        EXPECT_EQ(rgb(s, kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
+        EXPECT_EQ(rgb(g, kFanWedgeX, kFanWedgeY), wedge);
+        EXPECT_EQ(rgb(s, kFanWedgeX, kFanWedgeY), wedge);
+    }
+}
+
 }  // namespace
 }  // namespace ge::gltest

@@ -14,7 +14,8 @@
 
 namespace ge::testscene {
 
-inline void nearClipScene(ListBuilder& b, bool cle) {
+// Frame, identity world/view, the projection above, CLE, no culling.
+inline void nearClipFrame(ListBuilder& b, bool cle) {
     b.drawBuffer(GE_FORMAT_8888, 0, 512);
     b.depthBuffer(0x88000, 512);
     b.scissor(0, 0, 480, 272);
@@ -31,6 +32,10 @@ inline void nearClipScene(ListBuilder& b, bool cle) {
     b.setMatrix(GeMatrix::Proj, proj);
     b.enable(GE_CMD_CLE, cle);
     b.enable(GE_CMD_BCE, false);
+}
+
+inline void nearClipScene(ListBuilder& b, bool cle) {
+    nearClipFrame(b, cle);
     constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
     BuildVertex v[3];
     v[0].x = -0.5f, v[0].y = -0.5f, v[0].z = 1.0f;
@@ -50,5 +55,37 @@ inline constexpr ClipProbe kNearClipProbes[] = {
     {10, 200, false}, {240, 20, false},                                   // outside its edges
     {240, 210, false}, {240, 240, false},                                 // where the inverted one would be
 };
+
+// A fan whose centre is behind the camera: centre C and A, B as above, then D (5, −0.5, 1), which
+// lands off screen to the right (x = 1440, still inside the 4096 range). The second fan triangle
+// (C, B, D) crosses the near plane at B' (480, 27.2) on CB and at D' (2.5, 0.2) on CD, which
+// projects to x ≥ 4096: out of range, so every piece of the clipped polygon that uses D' is
+// dropped. The reference keeps the fan's odd vertices in slot 1 and clips (C, D, B) — its reverse
+// (B, D, C) is the one wound positively on screen, giving the polygon B D D' B' split from B into
+// (B, D, D') and (B, D', B'): both use D', nothing is drawn. Clipping in winding order (C, B, D)
+// instead would split B' B D D' from the other diagonal and keep (D, B, B').
+// With `asTriangles` the same two triangles are drawn as GE_PRIM_TRIANGLES (C, A, B), (C, B, D):
+// the reference then clips (C, B, D) in that order and keeps the piece (D, B, B').
+inline void nearClipFanScene(ListBuilder& b, bool asTriangles) {
+    nearClipFrame(b, false);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+    BuildVertex c, va, vb, vd;
+    c.x = 0.0f, c.y = 0.9f, c.z = -0.5f;
+    va.x = -0.5f, va.y = -0.5f, va.z = 1.0f;
+    vb.x = 0.5f, vb.y = -0.5f, vb.z = 1.0f;
+    vd.x = 5.0f, vd.y = -0.5f, vd.z = 1.0f;
+    if (asTriangles) {
+        const BuildVertex v[6] = {c, va, vb, c, vb, vd};
+        const auto bytes = packVertices(vtype, v, 6);
+        b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
+    } else {
+        const BuildVertex v[4] = {c, va, vb, vd};
+        const auto bytes = packVertices(vtype, v, 4);
+        b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 4, nullptr, bytes.data());
+    }
+}
+// (240, 120) lies in the first triangle's clipped quad; (470, 180) in the piece (D, B, B').
+inline constexpr ClipProbe kFanProbeFirst = {240, 120, true};
+inline constexpr int kFanWedgeX = 470, kFanWedgeY = 180;
 
 }  // namespace ge::testscene

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -199,27 +200,45 @@ TEST(SoftRender, NearVertexDroppedWithoutCleClippedWithIt) {
     EXPECT_LT(clipped, 240 * 136 / 2);  // less than the unclipped triangle
 }
 
-// A vertex behind the camera that passes CLE = 0's discard rule is near-clipped with either CLE
-// value (tests/near_clip_scene.h).
-TEST(SoftRender, NearClippingWhateverCleSays) {
-    for (bool cle : {false, true}) {
-        SCOPED_TRACE(cle ? "CLE = 1" : "CLE = 0");
-        Memory mem{16u << 20};
+// Runs a tests/near_clip_scene.h scene on one thread; the 8888 frame's RGB at (x, y).
+struct NearClipRender {
+    Memory mem{16u << 20};
+    explicit NearClipRender(const std::function<void(ListBuilder&)>& build) {
         ListBuilder b(&mem);
-        testscene::nearClipScene(b, cle);
+        build(b);
         b.finish();
         SoftOptions o;
         o.threads = 1;
         auto r = createSoftRenderer(mem, o);
         GeEngine eng(mem, r.get());
         eng.startList(b.placeList(), 0);
-        ASSERT_EQ(eng.run(), RunStatus::Completed);
+        EXPECT_EQ(eng.run(), RunStatus::Completed);
         r->flushToMemory();
-        for (const auto& p : testscene::kNearClipProbes) {
-            const u32 c = mem.read32(Memory::kVramBase + (u32(p.y) * 512 + u32(p.x)) * 4) & 0xFFFFFF;
-            EXPECT_EQ(c, p.covered ? 0xFFFFFFu : 0u) << p.x << "," << p.y;
-        }
     }
+    u32 rgb(int x, int y) const { return mem.read32(Memory::kVramBase + (u32(y) * 512 + u32(x)) * 4) & 0xFFFFFF; }
+};
+
+// A vertex behind the camera that passes CLE = 0's discard rule is near-clipped with either CLE
+// value (tests/near_clip_scene.h).
+TEST(SoftRender, NearClippingWhateverCleSays) {
+    for (bool cle : {false, true}) {
+        SCOPED_TRACE(cle ? "CLE = 1" : "CLE = 0");
+        NearClipRender r([cle](ListBuilder& b) { testscene::nearClipScene(b, cle); });
+        for (const auto& p : testscene::kNearClipProbes)
+            EXPECT_EQ(r.rgb(p.x, p.y), p.covered ? 0xFFFFFFu : 0u) << p.x << "," << p.y;
+    }
+}
+
+// Fan triangles are clipped in the reference's slot order (centre, odd, even vertex): the second
+// triangle of the fan loses its wedge, the same triangle drawn from a triangle list keeps it.
+TEST(SoftRender, NearClippedFanFollowsTheReferenceVertexOrder) {
+    using namespace testscene;
+    NearClipRender fan([](ListBuilder& b) { nearClipFanScene(b, false); });
+    NearClipRender list([](ListBuilder& b) { nearClipFanScene(b, true); });
+    EXPECT_EQ(fan.rgb(kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
+    EXPECT_EQ(list.rgb(kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
+    EXPECT_EQ(fan.rgb(kFanWedgeX, kFanWedgeY), 0u);
+    EXPECT_EQ(list.rgb(kFanWedgeX, kFanWedgeY), 0xFFFFFFu);
 }
 
 TEST(SoftRender, ImmediateVertices) {

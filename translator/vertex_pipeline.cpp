@@ -275,11 +275,15 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
         if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ref §8.5
         // Near clipping whatever CLE says, as the software model (ge-reference §8.5).
         if (soft::beyondNear(a) || soft::beyondNear(b) || soft::beyondNear(c)) {
+            // Clipped in the reference's vertex order (the strip/fan ring, softmodel/clip.h).
+            const bool reversed = ring && soft::ringReversed(ring, ia, ib);
             soft::ClipVertex poly[4];
-            const int n = soft::clipTriangleNear(ts_, a, b, c, poly);
+            const int n = ring ? soft::clipTriangleNear(ts_, cverts_[ring[0]], cverts_[ring[1]], cverts_[ring[2]], poly)
+                               : soft::clipTriangleNear(ts_, a, b, c, poly);
             int join = 0;
             for (int k = 1; k + 1 < n; ++k) {
-                if (culled(poly[0].sv, poly[k].sv, poly[k + 1].sv)) continue;
+                const int k1 = reversed ? k + 1 : k, k2 = reversed ? k : k + 1;  // primitive's winding
+                if (culled(poly[0].sv, poly[k1].sv, poly[k2].sv)) continue;
                 // Flat shading keeps the original provoking vertex's colour.
                 emitTriangle(poly[0].sv, poly[k].sv, poly[k + 1].sv, c.sv, join);
                 join = 1;
