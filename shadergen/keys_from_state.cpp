@@ -123,7 +123,8 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
             k.texClampV = st.TWRAP_vclamp() ? 1 : 0;
         }
         k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ref §3.9)
-        if (st.ATE_on() && st.ATEST_func() != 1) k.alphaTest = u8(st.ATEST_func() + 1);
+        if (st.ATE_on() && st.ATEST_func() != 1 && !soft::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull))
+            k.alphaTest = u8(st.ATEST_func() + 1);
         // The reference's implicit alpha != 0 test (softmodel/blend.h): code 9.
         if (soft::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
         if (st.CTE_on() && st.CTEST_func() != 1) k.colorTest = u8(st.CTEST_func() + 1);

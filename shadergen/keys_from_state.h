@@ -16,6 +16,9 @@ struct DrawFlags {
     bool fog = false;
     bool dither = false;
     bool gouraud = true;
+    // Every primary colour of the draw's primitives that reaches a fragment has alpha 255
+    // (softmodel/blend.h referenceSkipsAlphaTest); known once the geometry is built.
+    bool vertexAlphaFull = false;
     static DrawFlags fromState(const GeState& st);
 };
 

@@ -165,6 +165,58 @@ inline u32 logicOp(u32 op, u32 s, u32 d) {
 
 inline int clamp255(int v) { return v < 0 ? 0 : (v > 255 ? 255 : v); }
 
+// ---- The reference renderer's look at the palette's alpha ----
+// PPSSPP's software renderer (Rasterizer.cpp CheckClutAlphaFull) decides two state optimizations
+// from the palette of a CLUT texture: the entries used (the first 16 for CLUT4, else 256, limited
+// by the index mask + 1) are ANDed together, whole entries with their colour bits. `full`: every
+// entry has full alpha. `nonZero`: the AND is not zero, taken upstream as "no entry has alpha 0"
+// although a colour bit common to all entries is enough. Not checked (checked = false) for
+// non-CLUT textures, with an index offset (CLUT start) or per-level palettes.
+struct ReferenceClutAlpha {
+    bool checked = false, full = false, nonZero = false;
+};
+inline ReferenceClutAlpha referenceClutAlpha(const GeState& st) {
+    ReferenceClutAlpha r;
+    const u32 tfmt = st.TPF_format();
+    if ((tfmt & 4) == 0 || tfmt > 7) return r;
+    const bool sharedClut = tfmt != 4 || st.TMODE_maxlevel() == 0 || (st.TFILTER_min() & 4) == 0 || !st.TMODE_multiclut();
+    if (st.CLUT_start() != 0 || !sharedClut) return r;
+    u32 count = tfmt == 4 ? 16 : 256;
+    if (st.CLUT_mask() != 0xFF) count = std::min<u32>(count, st.CLUT_mask() + 1);
+    const u32 cfmt = st.CLUT_format();
+    u32 all = 0xFFFFFFFFu;
+    for (u32 i = 0; i < count; ++i) all &= cfmt == 3 ? readLE32(st.clut + 4 * i) : u32(readLE16(st.clut + 2 * i));
+    r.checked = true;
+    r.full = cfmt == 1 ? (all & 0x8000) != 0
+           : cfmt == 2 ? (all & 0xF000) == 0xF000
+           : cfmt == 3 ? (all & 0xFF000000u) == 0xFF000000u
+                       : true;  // 5650: no alpha
+    r.nonZero = all != 0;
+    return r;
+}
+
+// ---- The reference renderer's skipped alpha test ----
+// The converse optimization (DetectStateOptimizations, OPTIMIZED_ALPHATEST_OFF_NE/GT): with a CLUT
+// texture whose alpha is used (TFUNC RGBA) and every primary colour reaching a fragment at full
+// alpha, an alpha test GREATER or NOTEQUAL (after the reference's rewrite of GREATER 0 and LESS 255
+// into NOTEQUAL; reference below 255, mask 0xFF) is dropped when the palette has full alpha, or —
+// for a reference of 0 — when the ANDed entries are non-zero (`nonZero` above, colour bits
+// included). Texels of alpha 0 then pass: a source-alpha blend leaves the pixel, but dithering
+// still moves it by the dither value. `vertexAlphaFull`: the draw's colours that reach fragments
+// (all vertices with Gouraud shading, the provoking one with flat shading, the second corner of a
+// rectangle) have alpha 255 — upstream accumulates this over the draws sharing a state; here it is
+// taken per draw.
+inline bool referenceSkipsAlphaTest(const GeState& st, bool textured, bool vertexAlphaFull) {
+    if (!textured || !vertexAlphaFull || st.isClearMode() || !st.ATE_on() || !st.TFUNC_rgba()) return false;
+    if (st.ATEST_mask() != 0xFF) return false;
+    u32 func = st.ATEST_func();
+    const u32 ref = st.ATEST_ref();
+    if ((func == CMP_GREATER && ref == 0) || (func == CMP_LESS && ref == 0xFF)) func = CMP_NOTEQUAL;
+    if ((func != CMP_NOTEQUAL && func != CMP_GREATER) || ref >= 0xFF) return false;
+    const ReferenceClutAlpha c = referenceClutAlpha(st);
+    return c.checked && (c.full || (c.nonZero && ref == 0));
+}
+
 // ---- The reference renderer's implicit "alpha != 0" test ----
 // PPSSPP's software renderer, which made the reference renders, replaces a disabled (or always
 // passing) alpha test by "alpha NOTEQUAL 0" when it blends with A = source alpha, B = 1 − source
@@ -212,22 +264,9 @@ inline bool referenceDropsZeroAlpha(const GeState& st, bool textured) {
         }
         if (stencil) return false;
     }
-    const u32 tfmt = st.TPF_format();
-    if (textured && (tfmt & 4) != 0 && tfmt <= 7) {
-        const bool sharedClut = tfmt != 4 || st.TMODE_maxlevel() == 0 || (st.TFILTER_min() & 4) == 0 || !st.TMODE_multiclut();
-        if (st.CLUT_start() == 0 && sharedClut) {
-            u32 count = tfmt == 4 ? 16 : 256;
-            if (st.CLUT_mask() != 0xFF) count = std::min<u32>(count, st.CLUT_mask() + 1);
-            const u32 cfmt = st.CLUT_format();
-            u32 all = 0xFFFFFFFFu;
-            for (u32 i = 0; i < count; ++i)
-                all &= cfmt == 3 ? readLE32(st.clut + 4 * i) : u32(readLE16(st.clut + 2 * i));
-            const bool full = cfmt == 1 ? (all & 0x8000) != 0
-                            : cfmt == 2 ? (all & 0xF000) == 0xF000
-                            : cfmt == 3 ? (all & 0xFF000000u) == 0xFF000000u
-                                        : true;  // 5650: no alpha
-            if (full || all != 0) return false;
-        }
+    if (textured) {
+        const ReferenceClutAlpha c = referenceClutAlpha(st);
+        if (c.checked && (c.full || c.nonZero)) return false;
     }
     return true;
 }

@@ -208,7 +208,7 @@ int rowsReachable(u32 pixels, u32 stride) {
 
 }  // namespace
 
-PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled) {
+PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled, bool vertexAlphaFull) {
     PixelState ps;
     auto im = std::make_shared<Impl>();
     const GeBufferFormat fmt = st.framebufFormat();
@@ -252,6 +252,8 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->alphaMask = int(st.ATEST_mask());
     im->alphaRef = int(st.ATEST_ref()) & im->alphaMask;
     im->alphaTest = st.ATE_on() && !clear && im->alphaFunc != CMP_ALWAYS;
+    // The reference renderer's skipped alpha test for CLUT textures (blend.h).
+    if (im->alphaTest && referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull)) im->alphaTest = false;
     // The reference renderer's implicit "alpha != 0" test for source-alpha blending (blend.h).
     if (!clear && referenceDropsZeroAlpha(st, im->texture)) {
         im->alphaTest = true;

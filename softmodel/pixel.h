@@ -49,7 +49,10 @@ struct PixelState {
 
 // Builds the pixel state for the draw about to happen. `through` and `clearMode` come from the
 // packet/state; `textureEnabled` may be overridden (immediate vertices carry their own flags).
-PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled);
+// `vertexAlphaFull`: every primary colour of the draw that reaches a fragment has alpha 255 (the
+// reference's skipped alpha test depends on it, blend.h referenceSkipsAlphaTest).
+PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled,
+                           bool vertexAlphaFull = false);
 
 // Runs the whole per-pixel pipeline for n fragments, in order.
 void shadeFragments(const PixelState& ps, const Fragment* frags, size_t n);

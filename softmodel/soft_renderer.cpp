@@ -315,6 +315,20 @@ struct SoftRenderer::Impl {
     }
 
     // ---- per draw ----
+    // Whether every primary colour of the assembled primitives that reaches a fragment has alpha
+    // 255: all vertices with Gouraud shading, the provoking one with flat shading and for
+    // rectangles (as the reference's CalculateRasterStateFlags reads them).
+    bool colorsReachingFragmentsFullAlpha(const RasterParams& rp) const {
+        for (const RasterPrim& p : scratchPrims) {
+            if (scratchVerts[p.prov].color[3] != 255) return false;
+            if (!rp.gouraud || p.kind == PrimKind::Rect) continue;
+            const int n = p.kind == PrimKind::Triangle ? 3 : (p.kind == PrimKind::Line ? 2 : 1);
+            for (int k = 0; k < n; ++k)
+                if (scratchVerts[p.v[k]].color[3] != 255) return false;
+        }
+        return true;
+    }
+
     // Queues the primitives assembled in `scratch` as one draw with the given state.
     void queueDraw(const GeState& st, const RasterParams& rp, bool textured, bool forceRebuild) {
         if (scratchPrims.empty()) return;
@@ -326,11 +340,14 @@ struct SoftRenderer::Impl {
         // Before the pixel state is built: sending the batch off may retire one whose writes
         // invalidate cached textures.
         noteTarget(targetOf(st, rp));
-        if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured) {
-            ps = buildPixelState(st, mem, *cache, textured);
+        const bool alphaFull = colorsReachingFragmentsFullAlpha(rp);
+        if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured ||
+            alphaFull != psAlphaFull) {
+            ps = buildPixelState(st, mem, *cache, textured, alphaFull);
             psValid = !forceRebuild;
             psThrough = through;
             psTextured = textured;
+            psAlphaFull = alphaFull;
             pendingDirty = 0;
         }
         Batch& b = building();
@@ -577,7 +594,7 @@ struct SoftRenderer::Impl {
     std::vector<std::vector<Fragment>> fragBufs;
 
     PixelState ps;
-    bool psValid = false, psThrough = false, psTextured = false;
+    bool psValid = false, psThrough = false, psTextured = false, psAlphaFull = false;
     u32 pendingDirty = DIRTY_ALL;
 
     // Assembly state of the draw being built.

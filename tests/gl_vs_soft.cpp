@@ -12,6 +12,7 @@
 #include "softmodel/soft_renderer.h"
 #include "tests/gl_fixture.h"
 #include "tests/near_clip_scene.h"
+#include "tests/reference_quirk_scenes.h"
 
 namespace ge::gltest {
 namespace {
@@ -213,6 +214,25 @@ TEST(GlVsSoft, NearClippingWhateverCleSays) {
             const size_t at = (size_t(p.y) * 512 + size_t(p.x)) * 4;
             EXPECT_EQ(readLE32(&g.vram[at]) & 0xFFFFFF, p.covered ? 0xFFFFFFu : 0u) << "GL " << p.x << "," << p.y;
             EXPECT_EQ(readLE32(&s.vram[at]) & 0xFFFFFF, p.covered ? 0xFFFFFFu : 0u) << "soft " << p.x << "," << p.y;
+        }
+    }
+}
+
+// The reference's skipped alpha test (softmodel/blend.h) on both backends: entry-0 texels are
+// written only when the palette ANDs to non-zero and the vertex alpha is 255.
+TEST(GlVsSoft, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
+    for (u32 entry0 : {0x00000001u, 0x00000000u}) {
+        for (u8 alpha : {u8(255), u8(254)}) {
+            SCOPED_TRACE(testing::Message() << "entry0 " << entry0 << " vertex alpha " << int(alpha));
+            auto build = [&](ListBuilder& b) { testscene::skippedAlphaTestScene(b, entry0, alpha); };
+            Frame g, s;
+            std::string err;
+            if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
+            ASSERT_TRUE(renderWith(false, build, s, err));
+            const u32 want = entry0 && alpha == 255 ? 0x000001u : 0u;
+            EXPECT_EQ(readLE32(&g.vram[0]) & 0xFFFFFF, want);
+            EXPECT_EQ(readLE32(&s.vram[0]) & 0xFFFFFF, want);
+            EXPECT_EQ(readLE32(&g.vram[4]) & 0xFFFFFF, readLE32(&s.vram[4]) & 0xFFFFFF);
         }
     }
 }

@@ -13,6 +13,7 @@
 #include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
 #include "tests/near_clip_scene.h"
+#include "tests/reference_quirk_scenes.h"
 
 using namespace ge;
 using namespace ge::soft;
@@ -200,7 +201,8 @@ TEST(SoftRender, NearVertexDroppedWithoutCleClippedWithIt) {
     EXPECT_LT(clipped, 240 * 136 / 2);  // less than the unclipped triangle
 }
 
-// Runs a tests/near_clip_scene.h scene on one thread; the 8888 frame's RGB at (x, y).
+// Runs a scene on one thread (tests/near_clip_scene.h, reference_quirk_scenes.h); the 512-stride
+// 8888 frame's RGB at (x, y).
 struct NearClipRender {
     Memory mem{16u << 20};
     explicit NearClipRender(const std::function<void(ListBuilder&)>& build) {
@@ -239,6 +241,24 @@ TEST(SoftRender, NearClippedFanFollowsTheReferenceVertexOrder) {
     EXPECT_EQ(list.rgb(kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
     EXPECT_EQ(fan.rgb(kFanWedgeX, kFanWedgeY), 0u);
     EXPECT_EQ(list.rgb(kFanWedgeX, kFanWedgeY), 0xFFFFFFu);
+}
+
+// The reference drops an alpha test GREATER 0 for a CLUT texture whose used entries AND to a
+// non-zero value when every vertex alpha is 255 (blend.h referenceSkipsAlphaTest).
+TEST(SoftRender, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
+    struct Case {
+        u32 entry0;
+        u8 vertexAlpha;
+        u32 zeroTexel;  // RGB where the texel is entry 0
+    };
+    for (const Case& c : {Case{0x00000001, 255, 0x000001}, Case{0x00000000, 255, 0}, Case{0x00000001, 254, 0}}) {
+        SCOPED_TRACE(testing::Message() << "entry0 " << c.entry0 << " vertex alpha " << int(c.vertexAlpha));
+        NearClipRender r([&](ListBuilder& b) { testscene::skippedAlphaTestScene(b, c.entry0, c.vertexAlpha); });
+        EXPECT_EQ(r.rgb(0, 0), c.zeroTexel);
+        EXPECT_EQ(r.rgb(1, 0), 0x0000FFu);  // red
+        EXPECT_EQ(r.rgb(3, 3), c.zeroTexel);
+        EXPECT_EQ(r.rgb(4, 0), 0u);  // outside the rectangle
+    }
 }
 
 TEST(SoftRender, ImmediateVertices) {

@@ -128,20 +128,31 @@ public:
     }
 
     // ---- Renderer ----
+    // Geometry is built before the draw's setup: the setup depends on the primitives' colours
+    // (the reference's skipped alpha test, softmodel/blend.h referenceSkipsAlphaTest).
     void drawPrim(const PrimPacket& p) override {
         ++stats_.draws;
         const GeState& st = *p.state;
-        if (!beginDraw(st, shadergen::DrawFlags::fromState(st))) return;
         std::string err;
-        if (!pipeline_.processPrim(mem_, st, p, vertexSettings(st), geo_, &err)) noteError(err);
+        drawGeo_.clear();
+        if (!pipeline_.processPrim(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
+        addDraw(st, shadergen::DrawFlags::fromState(st));
     }
 
     void drawPatch(const PatchPacket& p) override {
         ++stats_.draws;
         const GeState& st = *p.state;
-        if (!beginDraw(st, shadergen::DrawFlags::fromState(st))) return;
         std::string err;
-        if (!pipeline_.processPatch(mem_, st, p, vertexSettings(st), geo_, &err)) noteError(err);
+        drawGeo_.clear();
+        if (!pipeline_.processPatch(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
+        addDraw(st, shadergen::DrawFlags::fromState(st));
+    }
+
+    void addDraw(const GeState& st, shadergen::DrawFlags flags) {
+        if (drawGeo_.empty()) return;
+        flags.vertexAlphaFull = pipeline_.drawAlphaFull();
+        if (!beginDraw(st, flags)) return;
+        geo_.append(drawGeo_);
     }
 
     void drawImmediate(const ImmPacket& p) override {
@@ -161,8 +172,9 @@ public:
         vs.cullCcw = (f >> 20) & 1;
         vs.texture = df.texture && !st.isClearMode();
         vs.fog = df.fog && !st.isThrough();
-        if (!beginDraw(st, df)) return;
-        pipeline_.processImmediate(st, p, vs, geo_);
+        drawGeo_.clear();
+        pipeline_.processImmediate(st, p, vs, drawGeo_);
+        addDraw(st, df);
     }
 
     void blockTransfer(const TransferPacket& t, Memory& mem) override {
@@ -545,6 +557,7 @@ private:
     VertexPipeline pipeline_;
     u64 batchGeneration_ = 0;
     Geometry geo_;
+    Geometry drawGeo_;  // the current draw's geometry, before it joins the batch
     Setup batchSetup_;
     StateCache cache_;
     u64 seenClobbers_ = 0;

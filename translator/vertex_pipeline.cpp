@@ -133,8 +133,20 @@ bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVerte
     return vs_.cullCcw ? area < 0 : area > 0;
 }
 
+void VertexPipeline::noteColors(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+                                const soft::ScreenVertex& c, const soft::ScreenVertex& prov) {
+    if (!alphaFull_) return;
+    const soft::ScreenVertex* v[3] = {&a, &b, &c};
+    int y1, y2;
+    if (!soft::primitiveRows(rasterParams(), kind, v, y1, y2)) return;  // wholly outside: not drawn
+    const bool perVertex = vs_.gouraud && kind != soft::PrimKind::Rect;
+    if (prov.color[3] != 255) alphaFull_ = false;
+    if (perVertex && (a.color[3] != 255 || b.color[3] != 255 || c.color[3] != 255)) alphaFull_ = false;
+}
+
 void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                                   const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
+    noteColors(soft::PrimKind::Triangle, a, b, c, prov);
     if (s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x) == 0) {
         // A zero-area triangle covers only samples exactly on its line, with the reference's
         // degenerate attributes (softmodel/raster.cpp rasterZeroAreaTriangle): the software
@@ -187,6 +199,7 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
 }
 
 void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
+    noteColors(soft::PrimKind::Rect, v0, v1, v1, v1);
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
     if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ref §8.11)
@@ -333,6 +346,7 @@ void VertexPipeline::line(u32 ia, u32 ib) {
     soft::ClipVertex a = *v[0], b = *v[1];
     if (!ts_.through && (soft::beyondNear(a) || soft::beyondNear(b)))
         if (!soft::clipLineNear(ts_, a, b)) return;
+    noteColors(soft::PrimKind::Line, a.sv, b.sv, b.sv, b.sv);
     fragBuf_.resize(kFragmentBuffer);
     soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
     soft::rasterLine(rasterParams(), a.sv, b.sv, soft::Band{}, sink);
@@ -342,6 +356,7 @@ void VertexPipeline::line(u32 ia, u32 ib) {
 void VertexPipeline::point(u32 ia) {
     const soft::ClipVertex* v[1] = {&cverts_[ia]};
     if (!v[0]->valid || soft::discardPrimitive(ts_, v, 1)) return;
+    noteColors(soft::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv);
     fragBuf_.resize(kFragmentBuffer);
     soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
     soft::rasterPoint(rasterParams(), v[0]->sv, soft::Band{}, sink);
@@ -365,6 +380,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
     st_ = &st;
     vs_ = vs;
     out_ = &out;
+    alphaFull_ = true;
     if (!p.continuation) {
         pending_.clear();
         stripOdd_ = false;
@@ -420,6 +436,7 @@ bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const Pa
     st_ = &st;
     vs_ = vs;
     out_ = &out;
+    alphaFull_ = true;
     pending_.clear();
     TessOutput tess;
     if (!tessellatePatch(mem, st, p, tess, err)) return false;
@@ -446,6 +463,7 @@ void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, con
     st_ = &st;
     vs_ = vs;
     out_ = &out;
+    alphaFull_ = true;
     // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
     ts_ = soft::TransformState{};
     ts_.through = true;

@@ -53,6 +53,11 @@ struct Geometry {
         triBounds.clear();
         records.clear();
     }
+    void append(const Geometry& g) {
+        tris.insert(tris.end(), g.tris.begin(), g.tris.end());
+        triBounds.insert(triBounds.end(), g.triBounds.begin(), g.triBounds.end());
+        records.insert(records.end(), g.records.begin(), g.records.end());
+    }
     bool empty() const { return tris.empty(); }
 };
 
@@ -79,6 +84,10 @@ public:
                       Geometry& out, std::string* err);
     // Immediate vertices, already in drawing coordinates (ref §3.12).
     void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
+    // After a process* call: whether every primary colour of its primitives that reaches a
+    // fragment has alpha 255 (as the software model counts them: primitives not wholly outside
+    // the clip rectangle; all vertices with Gouraud shading, else the provoking one).
+    bool drawAlphaFull() const { return alphaFull_; }
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
@@ -97,6 +106,8 @@ private:
     void emitFragments(const soft::Fragment* f, size_t n);
     bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
     soft::RasterParams rasterParams() const;
+    void noteColors(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+                    const soft::ScreenVertex& c, const soft::ScreenVertex& prov);
     static void sinkFlush(void* ctx, const soft::Fragment* f, size_t n);
 
     // Per-draw context (valid during one process* call).
@@ -104,6 +115,7 @@ private:
     VertexSettings vs_;
     soft::TransformState ts_;
     Geometry* out_ = nullptr;
+    bool alphaFull_ = true;
 
     std::vector<DecodedVertex> decoded_;
     std::vector<soft::ClipVertex> cverts_;
