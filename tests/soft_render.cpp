@@ -9,6 +9,8 @@
 #include <random>
 #include <vector>
 
+#include "hle/dump/dump_writer.h"
+#include "hle/dump/player.h"
 #include "hle/ge_engine.h"
 #include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
@@ -201,21 +203,32 @@ TEST(SoftRender, NearVertexDroppedWithoutCleClippedWithIt) {
     EXPECT_LT(clipped, 240 * 136 / 2);  // less than the unclipped triangle
 }
 
-// Runs a scene on one thread (tests/near_clip_scene.h, reference_quirk_scenes.h); the 512-stride
-// 8888 frame's RGB at (x, y).
+// Records a scene (tests/near_clip_scene.h, reference_quirk_scenes.h) as a frame dump with
+// DumpRecorder, replays the dump with the software model on one thread, and reads the 512-stride
+// 8888 frame at VRAM offset 0: the rules are checked on the path real dumps take.
 struct NearClipRender {
     Memory mem{16u << 20};
     explicit NearClipRender(const std::function<void(ListBuilder&)>& build) {
-        ListBuilder b(&mem);
+        Memory src{16u << 20};
+        dump::DumpWriter w;
+        DumpRecorder rec(src, w);
+        GeState init;
+        init.reset();
+        for (int op = 0; op < 256; ++op) init.regs[op] = u32(op) << 24;
+        rec.begin(init, Memory::kVramBase, 512, GE_FORMAT_8888);
+        ListBuilder b(&src);
+        b.attach(&rec);
         build(b);
-        b.finish();
+        rec.end(Memory::kVramBase, 512, GE_FORMAT_8888);
+        EXPECT_TRUE(rec.warnings().empty());
         SoftOptions o;
         o.threads = 1;
         auto r = createSoftRenderer(mem, o);
         GeEngine eng(mem, r.get());
-        eng.startList(b.placeList(), 0);
-        EXPECT_EQ(eng.run(), RunStatus::Completed);
-        r->flushToMemory();
+        dump::ReplayResult res;
+        std::string err;
+        EXPECT_TRUE(dump::replayDump(w.dump(), eng, {}, res, err)) << err;
+        EXPECT_EQ(res.listErrors, 0u) << res.warning;
     }
     u32 rgb(int x, int y) const { return mem.read32(Memory::kVramBase + (u32(y) * 512 + u32(x)) * 4) & 0xFFFFFF; }
 };
