@@ -53,8 +53,9 @@ void lerpVertex(const TransformState& ts, const ClipVertex& a, const ClipVertex&
     r.q = p.q + (q.q - p.q) * t;
     r.fog = p.fog + (q.fog - p.fog) * t;
     // Colours use an 8-bit weight, (a·(256 − k) + b·k) / 256, as PPSSPP's clipper does.
-    int k = int(t * 256.0f);
-    k = k < 0 ? 0 : (k > 256 ? 256 : k);
+    // Limited in float before the conversion (NaN and out-of-range floats have no int value).
+    const float kf = t * 256.0f;
+    const int k = kf >= 0.0f ? (kf <= 256.0f ? int(kf) : 256) : 0;
     for (int c = 0; c < 4; ++c) r.color[c] = u8((p.color[c] * (256 - k) + q.color[c] * k) / 256);
     for (int c = 0; c < 3; ++c) r.secondary[c] = u8((p.secondary[c] * (256 - k) + q.secondary[c] * k) / 256);
     out.valid = true;

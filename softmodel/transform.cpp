@@ -187,7 +187,7 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     };
     v.sv.x = to16(xs, ts.offX16);
     v.sv.y = to16(ys, ts.offY16);
-    v.sv.z = int(std::clamp(zs, 0.0f, 65535.0f));
+    v.sv.z = depthToInt(zs);
     v.sv.w = w;
 }
 
@@ -204,8 +204,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         };
         sv.x = to16(in.pos[0]);
         sv.y = to16(in.pos[1]);
-        sv.z = int(std::clamp(in.pos[2], 0.0f, 65535.0f));
-        if (std::isnan(in.pos[2])) sv.z = 0;
+        sv.z = depthToInt(in.pos[2]);
         sv.w = 1.0f;
         sv.s = in.uv[0] * ts.invTexW0;
         sv.t = in.uv[1] * ts.invTexH0;

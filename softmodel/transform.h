@@ -13,6 +13,10 @@
 
 namespace ge::soft {
 
+// Screen Z as an integer 0–65535, truncated; NaN gives 0. Clamped in float before the conversion:
+// converting an out-of-range or NaN float to int is undefined behaviour.
+inline int depthToInt(float z) { return z >= 0.0f ? (z <= 65535.0f ? int(z) : 65535) : 0; }
+
 // A processed vertex: clip-space position plus everything the rasteriser needs.
 struct ClipVertex {
     float clip[4] = {0, 0, 0, 1};  // clip coordinates (through mode: unused)

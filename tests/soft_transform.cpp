@@ -268,6 +268,33 @@ TEST(SoftTransform, ScreenRangeAndDepthFlags) {
     EXPECT_TRUE(r.run(at(5000, 10, 0.5f)).outside);
 }
 
+// NaN and huge screen Z/W convert to integers without undefined behaviour (issue 12: clang's
+// float-cast-overflow check, enabled in the sanitizer build, caught int(NaN) here): NaN depth is 0,
+// huge depth 65535, a NaN clip parameter gives the first vertex's colour.
+TEST(SoftTransform, NanAndHugeDepthConvertSafely) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(depthToInt(nan), 0);
+    EXPECT_EQ(depthToInt(-1e30f), 0);
+    EXPECT_EQ(depthToInt(1e30f), 65535);
+    EXPECT_EQ(depthToInt(std::numeric_limits<float>::infinity()), 65535);
+    EXPECT_EQ(depthToInt(1234.9f), 1234);
+    Rig r;
+    ClipVertex v = r.run(at(10, 10, nan));  // CLE = 0: out of range (the GE's terms make NaN huge)
+    EXPECT_TRUE(v.outside);
+    v = r.run(at(10, 10, 1e30f));
+    EXPECT_TRUE(v.outside);
+    EXPECT_EQ(v.sv.z, 65535);
+    const ClipVertex through = r.run(at(10, 10, nan), 0x800000 | 0x180);
+    EXPECT_EQ(through.sv.z, 0);
+    const TransformState ts = makeTransformState(r.st, 0x180, false, false);
+    ClipVertex a = r.run(at(10, 10, 0.5f)), b = r.run(at(20, 10, 0.5f)), out;
+    a.sv.color[0] = 10, b.sv.color[0] = 200;
+    lerpVertex(ts, a, b, nan, out);
+    EXPECT_EQ(out.sv.color[0], 10);
+    lerpVertex(ts, a, b, 1e30f, out);
+    EXPECT_EQ(out.sv.color[0], 200);
+}
+
 // The GE's matrix terms (transform.cpp geTerm): a zero or denormal factor gives a zero term, and
 // an exponent field of 255 (IEEE NaN/inf) is an ordinary exponent, ±1.m·2^128. Beam 'em up's text
 // (rectangles whose second vertex has z = NaN under an orthographic matrix) depends on it.
