@@ -2,6 +2,8 @@
 // error cases, the 20 frametest dumps (load, facts, read → serialise → read round trip) and the
 // DumpWriter.
 #include <gtest/gtest.h>
+
+#include <chrono>
 #include <zip.h>
 #include <zstd.h>
 
@@ -307,7 +309,7 @@ TEST(DumpLoad, Errors) {
     EXPECT_FALSE(load(std::vector<u8>(good.begin(), good.end() - 1), d, err));
     EXPECT_NE(err.find("truncated push buffer"), std::string::npos) << err;
 
-    // commandCount * 9 would overflow 32 bits and exceeds the 1 GiB cap.
+    // commandCount * 9 would overflow 32 bits and exceeds the record cap (ppdmp.h).
     f = good;
     writeLE32(f.data() + 24, 0xFFFFFFFFu);
     EXPECT_FALSE(load(f, d, err));
@@ -318,7 +320,7 @@ TEST(DumpLoad, Errors) {
     EXPECT_NE(err.find("push buffer too large"), std::string::npos) << err;
     // Within the cap but not what the frame holds: refused before allocating (content size).
     f = good;
-    writeLE32(f.data() + 28, 0x3FFFFFFFu);
+    writeLE32(f.data() + 28, u32(kMaxPushbufBytes - 1));
     EXPECT_FALSE(load(f, d, err));
     EXPECT_NE(err.find("header says"), std::string::npos) << err;
     // One record more than the block holds.
@@ -345,6 +347,44 @@ TEST(DumpLoad, Errors) {
     f = good;
     f.push_back(0x55);
     EXPECT_TRUE(load(f, d, err)) << err;
+}
+
+// A zstd frame without a content size made of RLE blocks (3 header bytes + 1 byte each, 128 KiB
+// window): a few kilobytes that decompress to `blocks` × 128 KiB of zeros.
+std::vector<u8> zstdRleBomb(u32 blocks) {
+    std::vector<u8> out = {0x28, 0xB5, 0x2F, 0xFD, 0x00, 0x38};  // no content size, 128 KiB window
+    for (u32 i = 0; i < blocks; ++i) {
+        const u32 h = (i + 1 == blocks ? 1u : 0u) | (1u << 1) /*RLE*/ | ((128u << 10) << 3);
+        out.push_back(u8(h));
+        out.push_back(u8(h >> 8));
+        out.push_back(u8(h >> 16));
+        out.push_back(0);
+    }
+    return out;
+}
+
+// Hostile sizes cost neither memory nor time (issue 12): a 4 KB frame that would decompress to
+// 128 MiB under a header that says 64 bytes stops at the header's size; caps on the header's
+// record count and push-buffer size (ppdmp.h) refuse before anything is allocated.
+TEST(DumpLoad, DecompressionBombsStopAtTheHeadersSize) {
+    Dump d;
+    std::string err;
+    const std::vector<u8> cmd = recordBytes(kRecs);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<u8> bomb = zstdRleBomb(1024);
+    ASSERT_LT(bomb.size(), 5000u);
+    EXPECT_FALSE(load(buildFile(6, "", 3, 64, zstdRaw(cmd), bomb), d, err));
+    EXPECT_NE(err.find("more than"), std::string::npos) << err;
+    // A frame shorter than the header says: refused after producing only what it holds.
+    EXPECT_FALSE(load(buildFile(6, "", 3, (16u << 20) + 1, zstdRaw(cmd), zstdRleBomb(128)), d, err));
+    EXPECT_NE(err.find("header says"), std::string::npos) << err;
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(secs, 5.0);
+    // Caps: one record over, one byte over.
+    EXPECT_FALSE(load(buildFile(6, "", u32(kMaxRecords + 1), 20, zstdRaw(cmd), zstdRaw(pushBytes20())), d, err));
+    EXPECT_NE(err.find("command block too large"), std::string::npos) << err;
+    EXPECT_FALSE(load(buildFile(6, "", 3, u32(kMaxPushbufBytes + 1), zstdRaw(cmd), zstdRaw(pushBytes20())), d, err));
+    EXPECT_NE(err.find("push buffer too large"), std::string::npos) << err;
 }
 
 TEST(DumpLoad, FilesAndZips) {

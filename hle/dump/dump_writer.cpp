@@ -54,7 +54,7 @@ u32 DumpWriter::placePayload(const u8* data, u32 size, u32 align, bool dedup) {
 
 void DumpWriter::add(u8 type, const void* data, u32 size, u32 align, bool dedup) {
     checkData(data, size);
-    if (u64(m_dump.records.size() + 1) * kRecordBytes > kMaxBlockBytes)
+    if (u64(m_dump.records.size()) + 1 > kMaxRecords)
         throw std::length_error("DumpWriter: too many records");
     const u32 ptr = placePayload(static_cast<const u8*>(data), size, align, dedup);
     m_dump.records.push_back(Record{type, size, ptr});

@@ -101,9 +101,14 @@ bool tryResize(std::vector<u8>& v, size_t n, std::string& err) {
     return true;
 }
 
-// §2.2: versions 5–6 use one zstd frame per block, decompressed in one call into a buffer of
-// exactly the expected size. A frame without a content size is accepted as long as it
-// decompresses to exactly that size (ZSTD_decompress never writes past the capacity).
+// §2.2: versions 5–6 use one zstd frame per block. Streamed into a buffer that grows only as
+// output arrives and never past `expected` (itself capped by the header checks), so a frame that
+// claims or produces more than the header says costs no more than the header's size, and a frame
+// without a content size is bounded the same way.
+struct ZstdDCtxFree {
+    void operator()(ZSTD_DCtx* c) const { ZSTD_freeDCtx(c); }
+};
+
 bool decompressZstd(const u8* src, size_t n, u64 expected, std::vector<u8>& out, const char* what,
                     std::string& err) {
     const unsigned long long fcs = ZSTD_getFrameContentSize(src, n);
@@ -116,18 +121,49 @@ bool decompressZstd(const u8* src, size_t n, u64 expected, std::vector<u8>& out,
               std::to_string(expected);
         return false;
     }
-    if (!tryResize(out, size_t(expected), err)) return false;
-    u8 dummy = 0;  // ZSTD wants a valid pointer even for an empty output
-    const size_t r = ZSTD_decompress(expected ? out.data() : &dummy, size_t(expected), src, n);
-    if (ZSTD_isError(r)) {
-        err = std::string("corrupt zstd data in ") + what + ": " + ZSTD_getErrorName(r);
+    std::unique_ptr<ZSTD_DCtx, ZstdDCtxFree> dctx(ZSTD_createDCtx());
+    if (!dctx) {
+        err = "out of memory (zstd context)";
         return false;
     }
-    if (r != expected) {
-        err = std::string(what) + " decompresses to " + std::to_string(r) + " bytes, header says " +
+    out.clear();
+    ZSTD_inBuffer in{src, n, 0};
+    size_t produced = 0;
+    for (;;) {
+        if (produced == out.size() && out.size() < expected) {
+            // Grow geometrically from 1 MiB: memory follows the output actually produced.
+            const u64 next = std::min<u64>(expected, std::max<u64>(u64(1) << 20, u64(out.size()) * 2));
+            if (!tryResize(out, size_t(next), err)) return false;
+        }
+        u8 spare = 0;  // room to detect output beyond `expected`
+        ZSTD_outBuffer ob = produced < out.size() ? ZSTD_outBuffer{out.data(), out.size(), produced}
+                                                  : ZSTD_outBuffer{&spare, 1, 0};
+        const size_t r = ZSTD_decompressStream(dctx.get(), &ob, &in);
+        if (ZSTD_isError(r)) {
+            err = std::string("corrupt zstd data in ") + what + ": " + ZSTD_getErrorName(r);
+            return false;
+        }
+        if (ob.dst == &spare) {
+            if (ob.pos) {
+                err = std::string(what) + " decompresses to more than the " + std::to_string(expected) +
+                      " bytes the header says";
+                return false;
+            }
+        } else {
+            produced = ob.pos;
+        }
+        if (r == 0) break;  // frame complete
+        if (in.pos == in.size && ob.pos < ob.size) {
+            err = std::string("truncated zstd data in ") + what;
+            return false;
+        }
+    }
+    if (produced != expected) {
+        err = std::string(what) + " decompresses to " + std::to_string(produced) + " bytes, header says " +
               std::to_string(expected);
         return false;
     }
+    out.resize(produced);
     return true;
 }
 
@@ -274,14 +310,16 @@ bool loadDumpFromMemory(const u8* data, size_t size, Dump& out, std::string& err
         err = "truncated header (block sizes)";
         return false;
     }
-    // Never trust the sizes: 64-bit products and caps before anything is allocated.
+    // Never trust the sizes: 64-bit products and caps before anything is allocated (ppdmp.h).
     const u64 cmdBytes = u64(commandCount) * kRecordBytes;
-    if (cmdBytes > kMaxBlockBytes) {
-        err = "command block too large (" + std::to_string(commandCount) + " records)";
+    if (commandCount > kMaxRecords) {
+        err = "command block too large (" + std::to_string(commandCount) + " records; at most " +
+              std::to_string(kMaxRecords) + ")";
         return false;
     }
-    if (u64(pushbufSize) > kMaxBlockBytes) {
-        err = "push buffer too large (" + std::to_string(pushbufSize) + " bytes)";
+    if (u64(pushbufSize) > kMaxPushbufBytes) {
+        err = "push buffer too large (" + std::to_string(pushbufSize) + " bytes; at most " +
+              std::to_string(kMaxPushbufBytes) + ")";
         return false;
     }
     const u8* cmdSrc = nullptr;
@@ -383,9 +421,14 @@ bool extractPpdmpFromZip(const u8* data, size_t size, std::vector<u8>& out, std:
         err = "zip: cannot open entry " + chosenName + ": " + zip_strerror(za.get());
         return false;
     }
-    if (!tryResize(out, size_t(st.size), err)) return false;
+    // The directory's size is a claim: read the real stream in pieces, the buffer growing only
+    // with what arrives, and stop at the claimed size.
     size_t got = 0;
-    while (got < out.size()) {
+    while (got < st.size) {
+        if (got == out.size()) {
+            const u64 next = std::min<u64>(st.size, std::max<u64>(u64(1) << 20, u64(out.size()) * 2));
+            if (!tryResize(out, size_t(next), err)) return false;
+        }
         const zip_int64_t r = zip_fread(f.get(), out.data() + got, out.size() - got);
         if (r < 0) {
             err = "zip: reading " + chosenName + ": " + zip_file_strerror(f.get());
@@ -399,6 +442,7 @@ bool extractPpdmpFromZip(const u8* data, size_t size, std::vector<u8>& out, std:
         }
         got += size_t(r);
     }
+    out.resize(got);
     // libzip verifies the CRC when a read reaches the end of the entry, so read once more: it
     // must report end-of-data (0), not an error or extra bytes.
     u8 extra = 0;
@@ -478,7 +522,7 @@ bool loadDump(const std::string& path, Dump& out, std::string& err) {
 
 std::vector<u8> serializeDump(const Dump& d) {
     const u64 cmdBytes = u64(d.records.size()) * kRecordBytes;
-    if (cmdBytes > kMaxBlockBytes || u64(d.pushbuf.size()) > kMaxBlockBytes) return {};
+    if (u64(d.records.size()) > kMaxRecords || u64(d.pushbuf.size()) > kMaxPushbufBytes) return {};
 
     std::vector<u8> cmd(static_cast<size_t>(cmdBytes));
     for (size_t i = 0; i < d.records.size(); ++i) {

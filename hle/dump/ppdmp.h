@@ -53,10 +53,15 @@ struct Record {
     friend bool operator==(const Record&, const Record&) = default;
 };
 
-// Limits applied to everything read from a file. A decompressed block (command array or push
-// buffer) larger than this is refused before any allocation; so is a container/zip entry.
-inline constexpr u64 kMaxBlockBytes = u64(1) << 30;  // 1 GiB
-inline constexpr u64 kMaxFileBytes = u64(1) << 30;   // 1 GiB for a .ppdmp or a .zip
+// Limits on what one frame's dump can legitimately hold, applied to everything read from a file
+// (a header's sizes are refused above them before anything is allocated, and decompression stops
+// at them whatever the compressed stream says). A frame reads at most the PSP's 32/64 MiB of RAM
+// and 2 MiB of VRAM; the 20 real frametests hold at most 3.5 MB of payloads and 22,069 records,
+// and the heaviest PSP frames carry about 10,700 draws (a handful of records each).
+inline constexpr u64 kMaxPushbufBytes = u64(256) << 20;  // 256 MiB of payloads
+inline constexpr u64 kMaxRecords = u64(2) << 20;         // 2,097,152 records (18 MiB)
+inline constexpr u64 kMaxBlockBytes = kMaxPushbufBytes;  // any one decompressed block
+inline constexpr u64 kMaxFileBytes = u64(256) << 20;     // a .ppdmp file, or the entry taken from a .zip
 inline constexpr u32 kRecordBytes = 9;               // §3.1
 inline constexpr u32 kInitBytes = 2048;              // §5: 512 words
 inline constexpr u32 kMinVersion = 2;                // §2.1: version 1 is not loadable
