@@ -1,7 +1,10 @@
 #include "hle/ge_engine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "hle/ge_time.h"
 
 namespace ge {
 
@@ -24,6 +27,7 @@ const char* runStatusName(RunStatus s) {
     case RunStatus::Stalled: return "stalled";
     case RunStatus::Paused: return "paused";
     case RunStatus::Budget: return "budget";
+    case RunStatus::TimeLimit: return "GE time limit";
     case RunStatus::Error: return "error";
     }
     return "?";
@@ -33,6 +37,7 @@ GeEngine::GeEngine(Memory& mem, Renderer* renderer) : mem_(mem) { setRenderer(re
 
 void GeEngine::setRenderer(Renderer* r) {
     renderer_ = r ? r : &nullRenderer_;
+    pixelWorkSeen_ = renderer_->pixelWork();
     dirty_ = DIRTY_ALL;
 }
 
@@ -47,6 +52,7 @@ void GeEngine::startList(u32 pc, u32 stall) {
     setStall(stall);
     state_.offsetAddr = 0;
     status_ = RunStatus::Budget;  // ready to run
+    stats_.cycles += getime::kListStart;
     lastError_ = GeError::None;
     lastErrorMsg_.clear();
     pauseRequested_ = false;
@@ -93,6 +99,10 @@ RunStatus GeEngine::run(u64 maxCommands) {
         }
         if (n >= maxCommands) {
             status_ = RunStatus::Budget;
+            break;
+        }
+        if (stats_.cycles >= cycleLimit_) {
+            status_ = RunStatus::TimeLimit;
             break;
         }
         const u8* p = mem_.ptr(list_.pc, 4);
@@ -154,6 +164,7 @@ void GeEngine::execute(u32 word) {
     const u8 op = u8(word >> 24);
     const u32 arg = word & 0xFFFFFF;
     ++stats_.commands;
+    stats_.cycles += getime::kPerCommand;
 
     // Immediate-mode vertices end at the first command that is not part of them.
     if (!immVerts_.empty() && (op < GE_CMD_X2 || op > GE_CMD_I2)) flushImmediate();
@@ -251,7 +262,9 @@ void GeEngine::doPrim(u32 arg) {
     pkt.indexAddr = state_.indexAddr;
     ++stats_.prims;
     stats_.vertices += count;
+    stats_.cycles += getime::perVertexCost(state_) * count;
     renderer_->drawPrim(pkt);
+    chargePixels();
 
     // Pointers advance past the consumed data (§4.6).
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
@@ -282,7 +295,17 @@ void GeEngine::doPatch(u32 word) {
     pkt.dirty = takeDirty();
     ++stats_.patches;
     stats_.vertices += count;
+    // Every generated vertex is transformed (PPSSPP charges nothing for patches): a surface of
+    // (patches·divisions + 1) vertices a side — Bezier patches every 3 control points, spline
+    // spans every point after the third (manual §5.2) — at most the tessellator's cap of 2^21.
+    auto side = [&](u32 points, u32 div) -> u64 {
+        const u64 spans = pkt.spline ? (points > 3 ? points - 3 : 1) : std::max<u32>(1, (points - 1) / 3);
+        return spans * div + 1;
+    };
+    const u64 generated = std::min<u64>(side(pkt.ucount, pkt.divU) * side(pkt.vcount, pkt.divV), u64(1) << 21);
+    stats_.cycles += getime::perVertexCost(state_) * generated;
     renderer_->drawPatch(pkt);
+    chargePixels();
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
     else state_.vertexAddr = (state_.vertexAddr + count * state_.vertexStride()) & 0x0FFFFFFF;
 }
@@ -323,9 +346,16 @@ bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) 
 // Object culling (manual §11.1; ge-reference §3.1 BBOX notes): BFLG = 1 unless every vertex lies
 // outside the same edge of the drawing area (REGION ∩ SCISSOR widened by one pixel, placed in screen
 // space with OFFSETX/Y) or behind the near plane. An area touching the 4096 screen edge always passes.
+void GeEngine::chargePixels() {
+    const u64 w = renderer_->pixelWork();
+    if (w > pixelWorkSeen_) stats_.cycles += getime::pixelCost(w - pixelWorkSeen_);
+    pixelWorkSeen_ = w;
+}
+
 void GeEngine::doBBox(u32 arg) {
     ++stats_.bboxes;
     const u32 n = arg & 0xFFFF;
+    stats_.cycles += getime::kPerBBoxVertex * n;
     const u32 stride = state_.vertexStride();
     const u32 isize = state_.indexSize();
     const u32 vbase = state_.vertexAddr, ibase = state_.indexAddr;
@@ -398,6 +428,7 @@ void GeEngine::doTransfer(u32 arg) {
     t.height = state_.XSIZE_h1() + 1;
     t.bpp = (arg & 1) ? 4 : 2;
     ++stats_.transfers;
+    stats_.cycles += getime::transferCost(u64(t.width) * t.height * t.bpp);
     renderer_->blockTransfer(t, mem_);
 }
 
@@ -425,7 +456,9 @@ void GeEngine::flushImmediate() {
     pkt.vertices.swap(immVerts_);
     immVerts_.clear();
     ++stats_.immediates;
+    stats_.cycles += getime::perVertexCost(state_) * pkt.vertices.size();
     renderer_->drawImmediate(pkt);
+    chargePixels();
 }
 
 void GeEngine::doImmediate(u32 arg) {
@@ -455,6 +488,7 @@ void GeEngine::doImmediate(u32 arg) {
 
 void GeEngine::doEnd(u32 arg) {
     const u32 pc = list_.pc;
+    stats_.cycles += getime::kEnd;
     if (list_.lastOp == GE_CMD_SIGNAL) {
         const u32 sig = list_.lastWord;
         const u32 behaviour = (sig >> 16) & 0xFF, sarg = sig & 0xFFFF;

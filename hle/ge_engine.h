@@ -30,6 +30,7 @@ enum class RunStatus {
     Stalled,          // PC reached the stall address; setStall() resumes
     Paused,           // a SIGNAL pause (HANDLER_PAUSE at FINISH, or requestPause()); resume() continues
     Budget,           // command budget exhausted; run() again continues
+    TimeLimit,        // the GE-time limit (setTimeLimit) is used up; raise it to continue
     Error,            // see lastError()
 };
 const char* runStatusName(RunStatus s);
@@ -71,6 +72,7 @@ struct GeStats {
     u64 commands = 0, prims = 0, patches = 0, immediates = 0, vertices = 0, bboxes = 0;
     u64 transfers = 0, clutLoads = 0, signals = 0, finishes = 0, unknownCommands = 0;
     u64 stateChanges = 0;  // register words that changed value
+    u64 cycles = 0;        // GE-time estimate (hle/ge_time.h), 222 MHz cycles
 };
 
 class GeEngine {
@@ -93,6 +95,9 @@ public:
     void startList(u32 pc, u32 stall);
     void setStall(u32 stall) { list_.stall = stall ? Memory::normalize(stall) : 0; }
     RunStatus run(u64 maxCommands = ~u64(0));
+    // Stop with RunStatus::TimeLimit once the GE-time estimate (stats().cycles, hle/ge_time.h)
+    // reaches `cycles` (~0: no limit, the default).
+    void setTimeLimit(u64 cycles) { cycleLimit_ = cycles; }
     RunStatus status() const { return status_; }
     // Ask the running list to pause after the current command (sceGeBreak); resume() clears it.
     void requestPause() { pauseRequested_ = true; }
@@ -123,6 +128,7 @@ private:
     void doEnd(u32 arg);
     bool jumpTo(u32 target);
     void matrixData(u8 op, u32 arg);
+    void chargePixels();  // adds the renderer's new pixel work to the GE-time estimate
 
     Memory& mem_;
     Renderer* renderer_ = nullptr;
@@ -135,6 +141,8 @@ private:
     GeError lastError_ = GeError::None;
     std::string lastErrorMsg_;
     u32 dirty_ = DIRTY_ALL;
+    u64 cycleLimit_ = ~u64(0);
+    u64 pixelWorkSeen_ = 0;
     bool pauseRequested_ = false;
     bool stopRequested_ = false;
     RunStatus stopStatus_ = RunStatus::Idle;

@@ -97,6 +97,10 @@ public:
     virtual void memoryWritten(u32 /*addr*/, u32 /*size*/) {}
     // Make emulated VRAM hold every pixel drawn so far (before the host reads a frame).
     virtual void flushToMemory() {}
+    // Cumulative upper bound of the pixels the primitives handed to the backend can write (their
+    // clipped bounding boxes), for the GE-time estimate (hle/ge_time.h). 0 for a backend that
+    // does not rasterise.
+    virtual u64 pixelWork() const { return 0; }
 };
 
 // A backend that draws nothing, for exercising the decoder (it still performs transfers).

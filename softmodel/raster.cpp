@@ -107,6 +107,19 @@ bool Band::overlaps(int y1, int y2) const {
     return false;
 }
 
+u64 primitivePixelBound(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int y1, int y2) {
+    if (y2 < y1) return 0;
+    const int n = kind == PrimKind::Triangle ? 3 : (kind == PrimKind::Point ? 1 : 2);
+    int lo = v[0]->x, hi = v[0]->x;
+    for (int k = 1; k < n; ++k) lo = std::min(lo, v[k]->x), hi = std::max(hi, v[k]->x);
+    const int x1 = std::max(int(floorDiv(lo, 16)), rp.clipX1), x2 = std::min(int(floorDiv(hi, 16)), rp.clipX2);
+    if (x2 < x1) return 0;
+    const u64 w = u64(x2 - x1 + 1), h = u64(y2 - y1 + 1);
+    if (kind == PrimKind::Point) return 1;
+    if (kind == PrimKind::Line) return std::max(w, h);
+    return w * h;
+}
+
 bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int& y1, int& y2) {
     switch (kind) {
     case PrimKind::Point:

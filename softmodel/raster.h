@@ -109,6 +109,10 @@ enum class PrimKind : u8 { Point, Line, Triangle, Rect };
 // Inclusive pixel-row range a primitive can touch after clipping (for skipping whole bands);
 // false when it certainly covers nothing. `v` holds 1 (point), 2 (line, rectangle) or 3 vertices.
 bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int& y1, int& y2);
+// An upper bound of the pixels the primitive can write, for the GE-time estimate (hle/ge_time.h):
+// the clip-rectangle-limited bounding box of a triangle or rectangle, the longer axis of a line,
+// 1 for a point. Rows y1..y2 as primitiveRows gave them.
+u64 primitivePixelBound(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int y1, int y2);
 
 // Helpers exposed for tests.
 // Fog factor → 8 bits (§8.9): 0 for f ≤ 0 (sign set), 255 for f ≥ 1, else floor(f·256).

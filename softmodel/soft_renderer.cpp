@@ -386,6 +386,7 @@ struct SoftRenderer::Impl {
         p.prov = prov;
         const ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
         if (!primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
+        pixelWork += primitivePixelBound(rp, kind, v, p.y1, p.y2);
         scratchPrims.push_back(p);
     }
 
@@ -579,6 +580,7 @@ struct SoftRenderer::Impl {
     Memory& mem;
     TextureCachePtr cache;
     SoftStats stats;
+    u64 pixelWork = 0;  // Renderer::pixelWork: bounding boxes of the primitives queued
     int threads = 1;
 
     Batch batches[2];
@@ -770,6 +772,8 @@ void SoftRenderer::memoryWritten(u32 addr, u32 size) {
 }
 
 void SoftRenderer::flushToMemory() { impl_->waitIdle(); }
+
+u64 SoftRenderer::pixelWork() const { return impl_->pixelWork; }
 
 std::unique_ptr<ge::Renderer> createSoftRenderer(ge::Memory& mem, const SoftOptions& opt) {
     return std::make_unique<SoftRenderer>(mem, opt);

@@ -51,6 +51,7 @@ public:
     void syncMemoryForRead(u32 addr, u32 size) override;
     void memoryWritten(u32 addr, u32 size) override;
     void flushToMemory() override;
+    u64 pixelWork() const override;
 
     int threadCount() const;
     const SoftStats& stats() const;

@@ -128,6 +128,8 @@ public:
     }
 
     // ---- Renderer ----
+    u64 pixelWork() const override { return pipeline_.pixelWork(); }
+
     // Geometry is built before the draw's setup: the setup depends on the primitives' colours
     // (the reference's skipped alpha test, softmodel/blend.h referenceSkipsAlphaTest).
     void drawPrim(const PrimPacket& p) override {

@@ -88,6 +88,8 @@ public:
     // fragment has alpha 255 (as the software model counts them: primitives not wholly outside
     // the clip rectangle; all vertices with Gouraud shading, else the provoking one).
     bool drawAlphaFull() const { return alphaFull_; }
+    // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h).
+    u64 pixelWork() const { return pixelWork_; }
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
@@ -106,8 +108,9 @@ private:
     void emitFragments(const soft::Fragment* f, size_t n);
     bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
     soft::RasterParams rasterParams() const;
-    void noteColors(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
-                    const soft::ScreenVertex& c, const soft::ScreenVertex& prov);
+    // Per primitive the backend draws: its pixel bound (pixelWork) and its colours (drawAlphaFull).
+    void notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+                       const soft::ScreenVertex& c, const soft::ScreenVertex& prov);
     static void sinkFlush(void* ctx, const soft::Fragment* f, size_t n);
 
     // Per-draw context (valid during one process* call).
@@ -116,6 +119,7 @@ private:
     soft::TransformState ts_;
     Geometry* out_ = nullptr;
     bool alphaFull_ = true;
+    u64 pixelWork_ = 0;
 
     std::vector<DecodedVertex> decoded_;
     std::vector<soft::ClipVertex> cverts_;

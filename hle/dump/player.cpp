@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <vector>
 
 #include "hle/dump/replay_memory.h"
+#include "hle/ge_time.h"
 
 namespace ge::dump {
 
@@ -43,7 +45,9 @@ private:
     void wrapList();
     void sync();
     void endList();
-    void hostWrite(u32 addr, const u8* data, u32 size) {
+    // `cpu`: a write the game's CPU/DMA made (MEMCPYDATA), else the player's own copy.
+    void hostWrite(u32 addr, const u8* data, u32 size, bool cpu = false) {
+        (cpu ? cpuBytes_ : playerBytes_) += size;
         if (t_.write(addr, data, size) < size) warn("a VRAM copy in the dump runs past the end of memory");
     }
     void writeWord(u32 addr, u32 w) {
@@ -77,16 +81,56 @@ private:
     u32 clutAddr_ = 0, clutFlags_ = 0;
     u32 memcpyDest_ = 0;
     u64 kicks_ = 0;
-    bool stopped_ = false;  // --replay-end reached
+    bool stopped_ = false;  // --replay-end reached, or the GE-time budget used up
+    // GE-time budget (ReplayOptions::maxGeMs): the target's estimate counted from `cycleBase_`,
+    // plus the game's CPU/DMA writes the dump replays (MEMSET/MEMCPYDATA, charged like block
+    // transfers) and the player's own copies (FRAMEBUF/CLUT data, push-buffer slabs and extras:
+    // no PSP work at all, charged at a host copy's pace so that a dump cannot make the player
+    // copy without end; hle/ge_time.h).
+    u64 budget_ = ~u64(0), cycleBase_ = 0, cpuBytes_ = 0, playerBytes_ = 0;
+    size_t record_ = 0;
+    u64 copyCycles() const {
+        return getime::transferCost(cpuBytes_) + getime::hostCopyCost(playerBytes_ + mapper_.stats().bytesCopied);
+    }
+    // Hands the GE what is left of the budget; false (and the replay stops) when nothing is.
+    bool budgetLeft();
+    void budgetExhausted();
 };
+
+bool Replayer::budgetLeft() {
+    if (budget_ == ~u64(0)) return true;
+    const u64 used = copyCycles();
+    if (used >= budget_ || t_.geCycles() - cycleBase_ >= budget_ - used) {
+        budgetExhausted();
+        return false;
+    }
+    t_.setTimeLimit(cycleBase_ + (budget_ - used));
+    return true;
+}
+
+void Replayer::budgetExhausted() {
+    if (res_.timeLimitHit) return;
+    res_.timeLimitHit = true;
+    stopped_ = true;
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "GE time budget of %.1f ms used up at record %zu (%llu draws recorded so far): the rest of the "
+                  "frame is not drawn (--max-ge-ms)",
+                  opt_.maxGeMs, record_, (unsigned long long)kicks_);
+    res_.warning = buf;  // this says more about the picture than any earlier warning
+}
 
 // "Run the list so far": move the stall address to the end of what was written and let the GE
 // catch up (PPSSPP DumpExecute::SyncStall; nothing before the list exists).
 void Replayer::sync() {
-    if (!listBuf_) return;
+    if (!listBuf_ || !budgetLeft()) return;
     ++res_.syncs;
     const RunStatus s = t_.runTo(pos_, kRunBudget);
     if (s == RunStatus::Stalled) return;
+    if (s == RunStatus::TimeLimit) {
+        budgetExhausted();
+        return;
+    }
     ++res_.listErrors;
     char buf[160];
     std::snprintf(buf, sizeof buf, "display list stopped (%s%s%s) before the end of the recorded commands",
@@ -179,13 +223,16 @@ void Replayer::registers(const Record& r, const u8* p) {
 // §6.3 as PPSSPP's SubmitListEnd: FINISH + END (words still queued by data records after the
 // last block are dropped), run to completion.
 void Replayer::endList() {
-    if (!listBuf_) return;
+    if (!listBuf_ || res_.timeLimitHit) return;
     writeWord(pos_, cmd(GE_CMD_FINISH, 0));
     writeWord(pos_ + 4, cmd(GE_CMD_END, 0));
     pos_ += 8;
+    if (!budgetLeft()) return;
     ++res_.syncs;
     const RunStatus s = t_.runTo(pos_, kRunBudget);
-    if (s != RunStatus::Completed) {
+    if (s == RunStatus::TimeLimit) {
+        budgetExhausted();
+    } else if (s != RunStatus::Completed) {
         ++res_.listErrors;
         warn(std::string("final list ended as '") + runStatusName(s) + "'");
     }
@@ -196,8 +243,16 @@ bool Replayer::play(std::string& err) {
         err = "dump does not start with an INIT record";
         return false;
     }
+    if (opt_.maxGeMs > 0) budget_ = getime::cyclesFromMs(opt_.maxGeMs);
+    cycleBase_ = t_.geCycles();
     const Record* prev = nullptr;
     for (size_t ri = 0; ri < d_.records.size() && !stopped_; ++ri) {
+        record_ = ri;
+        // Host copies are charged as they happen; the GE's own work at each catch-up (sync).
+        if (copyCycles() >= budget_) {
+            budgetExhausted();
+            break;
+        }
         const Record& r = d_.records[ri];
         ++res_.records;
         const u8* p = d_.payload(r);
@@ -287,7 +342,7 @@ bool Replayer::play(std::string& err) {
                 const u32 dest = d_.payloadWord(r, 0), value = d_.payloadWord(r, 1), size = d_.payloadWord(r, 2);
                 if (Memory::isVram(dest)) {
                     sync();
-                    t_.fill(dest, u8(value), size);
+                    cpuBytes_ += t_.fill(dest, u8(value), size);
                 }
                 break;
             }
@@ -295,7 +350,7 @@ bool Replayer::play(std::string& err) {
             case MEMCPYDATA:
                 if (Memory::isVram(memcpyDest_)) {
                     sync();
-                    hostWrite(memcpyDest_, p, r.size);
+                    hostWrite(memcpyDest_, p, r.size, true);
                 }
                 break;
             case EDRAMTRANS:
@@ -321,6 +376,8 @@ bool Replayer::play(std::string& err) {
         prev = &r;
     }
     endList();
+    t_.setTimeLimit(~u64(0));
+    res_.geCycles = t_.geCycles() - cycleBase_ + copyCycles();
     res_.draws = kicks_;
     res_.slabMaps = mapper_.stats().slabMaps;
     res_.extraMaps = mapper_.stats().extraMaps;
@@ -341,20 +398,32 @@ bool parseReplayTiming(const std::string& s, ReplayTiming& out) {
 
 DumpSummary summarize(const Dump& d) {
     DumpSummary s;
+    // Records may share a payload (a hostile dump: one 4 MiB block behind 200k records): each
+    // distinct block is scanned once, so the work is bounded by the push buffer's size.
+    struct Counts {
+        u64 commands = 0, prims = 0, patches = 0, transfers = 0, clutLoads = 0;
+    };
+    std::map<std::pair<u32, u32>, Counts> scanned;
     for (const Record& r : d.records) {
         if (r.type < 32) ++s.recordsByType[r.type];
         if (!isKnownRecordType(r.type)) ++s.unknownRecords;
         if (r.type != REGISTERS) continue;
         const u8* p = d.payload(r);
         if (!p) continue;
-        for (u32 i = 0; i < r.size / 4; ++i) {
-            const u8 op = p[4 * i + 3];
-            ++s.commands;
-            if (op == GE_CMD_PRIM) ++s.prims;
-            if (op == GE_CMD_BEZIER || op == GE_CMD_SPLINE) ++s.patches;
-            if (op == GE_CMD_XSTART) ++s.transfers;
-            if (op == GE_CMD_CLOAD) ++s.clutLoads;
+        auto [it, fresh] = scanned.try_emplace({r.ptr, r.size});
+        Counts& c = it->second;
+        if (fresh) {
+            for (u32 i = 0; i < r.size / 4; ++i) {
+                const u8 op = p[4 * i + 3];
+                ++c.commands;
+                if (op == GE_CMD_PRIM) ++c.prims;
+                if (op == GE_CMD_BEZIER || op == GE_CMD_SPLINE) ++c.patches;
+                if (op == GE_CMD_XSTART) ++c.transfers;
+                if (op == GE_CMD_CLOAD) ++c.clutLoads;
+            }
         }
+        s.commands += c.commands, s.prims += c.prims, s.patches += c.patches;
+        s.transfers += c.transfers, s.clutLoads += c.clutLoads;
     }
     s.draws = s.prims + s.patches;
     return s;

@@ -36,6 +36,12 @@ struct ReplayOptions {
     // Stop after the Nth draw kick (PRIM/BEZIER/SPLINE, counted from 1); 0 = whole frame.
     u64 replayEnd = 0;
     ReplayTiming timing = ReplayTiming::Ppsspp;
+    // The replay's budget in emulated GE time (hle/ge_time.h), milliseconds; 0 = no limit. The
+    // GE's work and the CPU/DMA copies the dump replays (charged like block transfers) count;
+    // once it is used up the rest of the frame is not drawn and ReplayResult::warning says so.
+    // Default: 10 frames at 60 Hz. A real frame stays far below (the 20 frametests: docs).
+    double maxGeMs = kDefaultMaxGeMs;
+    static constexpr double kDefaultMaxGeMs = 1000.0 / 6.0;
 };
 
 struct ReplayResult {
@@ -45,6 +51,8 @@ struct ReplayResult {
     u64 listErrors = 0;             // list errors met (the player restarts the list and goes on)
     u64 syncs = 0;                  // times the GE was let catch up (stall address moved)
     u64 slabMaps = 0, extraMaps = 0, listWraps = 0;  // push-buffer mappings, list-buffer wraps
+    u64 geCycles = 0;               // GE-time estimate of the replay (hle/ge_time.h), copies included
+    bool timeLimitHit = false;      // the GE-time budget ran out: the frame is cut short
     std::string warning;            // first non-fatal problem, if any
 };
 
@@ -67,6 +75,10 @@ public:
     virtual bool setEdramTranslation(u32 value) = 0;
     // The frame is complete: make emulated VRAM hold every pixel drawn.
     virtual void finishFrame() = 0;
+    // The GE-time estimate so far (hle/ge_time.h) and a limit at which runTo stops with
+    // RunStatus::TimeLimit. A target without a cost model returns 0 and ignores the limit.
+    virtual u64 geCycles() { return 0; }
+    virtual void setTimeLimit(u64 /*cycles*/) {}
 };
 
 class EngineTarget : public ReplayTarget {
@@ -85,6 +97,8 @@ public:
     u32 readRegister(u8 op) override { return eng_.state().regs[op]; }
     bool setEdramTranslation(u32 v) override { return eng_.memory().setEdramTranslation(v); }
     void finishFrame() override { eng_.renderer()->flushToMemory(); }
+    u64 geCycles() override { return eng_.stats().cycles; }
+    void setTimeLimit(u64 cycles) override { eng_.setTimeLimit(cycles); }
 
 private:
     GeEngine& eng_;

@@ -33,6 +33,7 @@ void GuestHeap::free(u32 addr) {
 void PushbufMapper::copyIn(u32 guest, u32 bufpos, u32 size) {
     // The player's own memory copy, as Memory::MemcpyUnchecked in PPSSPP's BufMapping.
     target_.write(guest, pushbuf_.data() + bufpos, size);
+    stats_.bytesCopied += size;
 }
 
 u32 PushbufMapper::map(u32 bufpos, u32 size, const std::function<void()>& flush) {

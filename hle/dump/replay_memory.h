@@ -45,6 +45,7 @@ struct MapperStats {
     u64 slabMaps = 0;   // slabs (re)filled from the push buffer
     u64 extraMaps = 0;  // extras allocated for straddling payloads
     u64 failures = 0;   // payloads that could not be mapped (heap full)
+    u64 bytesCopied = 0;  // push-buffer bytes copied into guest memory
 };
 
 class PushbufMapper {

@@ -1,0 +1,166 @@
+// Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs; issue 12): small
+// hostile dumps that loop or make the player copy without end stop at the budget with a warning,
+// and the estimate itself adds up as documented.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "hle/dump/dump_writer.h"
+#include "hle/dump/player.h"
+#include "hle/ge_time.h"
+#include "hle/list_builder.h"
+#include "softmodel/soft_renderer.h"
+
+using namespace ge;
+
+namespace {
+
+u32 word(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
+
+// Where the player's list buffer lies (player.cpp: 256 KiB at the top of user memory), so that a
+// hostile block can jump into it.
+constexpr u32 kListBuf = 0x0A000000 - (256u << 10);
+
+dump::DumpWriter startDump() {
+    dump::DumpWriter w;
+    GeState st;
+    st.reset();
+    for (int op = 0; op < 256; ++op) st.regs[op] = u32(op) << 24;
+    u32 ctx[512];
+    st.saveContext(ctx);
+    w.init(ctx);
+    w.display(0x04000000, 512, GE_FORMAT_8888);
+    return w;
+}
+
+struct Replay {
+    Memory mem;
+    std::unique_ptr<Renderer> r;
+    GeStats stats;
+    dump::ReplayResult res;
+    explicit Replay(const dump::Dump& d, double maxGeMs = dump::ReplayOptions::kDefaultMaxGeMs, bool soft = true) {
+        soft::SoftOptions so;
+        so.threads = 1;
+        if (soft) r = soft::createSoftRenderer(mem, so);
+        else r = std::make_unique<NullRenderer>();
+        GeEngine eng(mem, r.get());
+        dump::ReplayOptions opt;
+        opt.maxGeMs = maxGeMs;
+        std::string err;
+        EXPECT_TRUE(dump::replayDump(d, eng, opt, res, err)) << err;
+        stats = eng.stats();
+    }
+};
+
+// A block that draws a full-screen through-mode rectangle and jumps back to its own start: each
+// catch-up runs until its command budget, tens of thousands of full-screen rectangles, and the
+// next catch-up starts over — minutes of drawing without a budget in GE time.
+TEST(ReplayBudget, RectangleLoopStopsAtTheBudget) {
+    dump::DumpWriter w = startDump();
+    ListBuilder s;
+    s.drawBuffer(GE_FORMAT_8888, 0, 512);
+    s.scissor(0, 0, 480, 272);
+    s.region(0, 0, 480, 272);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    s.setVertexType(vtype);
+    w.registers(s.words());
+    BuildVertex v[2];
+    v[1].x = 480;
+    v[1].y = 272;
+    const auto bytes = packVertices(vtype, v, 2);
+    w.vertices(bytes.data(), u32(bytes.size()));
+    // List buffer: NOP, the state block, then this block after the BASE + VADR that VERTICES
+    // queued: the loop starts at those (a draw advances the vertex pointer, §4.6).
+    const u32 loopStart = kListBuf + 4 + u32(4 * s.words().size());
+    w.registers({word(GE_CMD_PRIM, (GE_PRIM_RECTANGLES << 16) | 2), word(GE_CMD_BASE, (loopStart >> 8) & 0xFF0000),
+                 word(GE_CMD_JUMP, loopStart & 0xFFFFFF)});
+    w.display(0x04000000, 512, GE_FORMAT_8888);
+    constexpr double kMs = 10.0;
+    Replay r(w.dump(), kMs);
+    EXPECT_TRUE(r.res.timeLimitHit);
+    EXPECT_NE(r.res.warning.find("GE time budget"), std::string::npos) << r.res.warning;
+    // 480·272 pixels at 1/3 cycle + 2 vertices at 20 + 3 commands at 2 a loop.
+    const u64 perLoop = getime::pixelCost(480 * 272) + 2 * 20 + 3 * getime::kPerCommand;
+    const u64 budget = getime::cyclesFromMs(kMs);
+    EXPECT_NEAR(double(r.stats.prims), double(budget / perLoop), 3.0);
+    EXPECT_GE(r.res.geCycles, budget);
+    EXPECT_LT(r.res.geCycles, budget + 2 * perLoop);
+    // The pixels drawn before the cut are there.
+    EXPECT_EQ(r.mem.read32(0x04000000 + (100 * 512 + 100) * 4) & 0xFFFFFF, 0xFFFFFFu);
+}
+
+// A list that jumps to itself, in many records: each catch-up runs out of commands and the next
+// record's catch-up starts the loop again; the budget counts across all of them. Null backend.
+TEST(ReplayBudget, SelfJumpStopsAtTheBudget) {
+    dump::DumpWriter w = startDump();
+    for (u32 k = 0; k < 200; ++k) {
+        // Block k lies after the NOP and k blocks of two words; its JUMP word jumps to itself.
+        const u32 self = kListBuf + 4 + 8 * k + 4;
+        w.registers({word(GE_CMD_BASE, (self >> 8) & 0xFF0000), word(GE_CMD_JUMP, self & 0xFFFFFF)});
+        w.display(0x04000000, 512, GE_FORMAT_8888);  // a catch-up: runs out of commands, restarts
+    }
+    constexpr double kMs = 5.0;
+    Replay r(w.dump(), kMs, false);
+    EXPECT_TRUE(r.res.timeLimitHit);
+        // List starts (60 cycles each) take a little of the budget too.
+    const double want = double(getime::cyclesFromMs(kMs) / getime::kPerCommand);
+    EXPECT_NEAR(double(r.stats.commands), want, want * 0.01);
+}
+
+// One 2 MiB FRAMEBUF payload behind thousands of records: the player would copy 2 MiB into
+// VRAM for each; its copies are charged (hle/ge_time.h hostCopyCost) and the replay stops.
+TEST(ReplayBudget, SharedPayloadCopiesStopAtTheBudget) {
+    dump::DumpWriter w = startDump();
+    std::vector<u8> vram(2u << 20, 0x5A);
+    w.framebufTexture(0, 0x04000000, 512, 0, vram.data(), u32(vram.size()));
+    dump::Dump d = w.dump();
+    const dump::Record fb = d.records.back();
+    for (int i = 0; i < 20000; ++i) d.records.push_back(fb);  // all sharing the one payload
+    Replay r(d, dump::ReplayOptions::kDefaultMaxGeMs, false);
+    EXPECT_TRUE(r.res.timeLimitHit);
+    const u64 perRecord = getime::hostCopyCost(2u << 20);
+    EXPECT_LE(r.res.records, getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs) / perRecord + 3);
+    EXPECT_EQ(r.mem.read8(0x04000000), 0x5A);
+}
+
+TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
+    // The project's scenes (real frames of the 20 frametests: at most 31 ms, docs/accuracy.md).
+    for (const char* name : {"lit_textured_skinned", "clut_dxt_sprites", "bezier_spline", "blend_stencil_logic",
+                             "render_to_texture"}) {
+        SCOPED_TRACE(name);
+        dump::Dump d;
+        std::string err;
+        ASSERT_TRUE(dump::loadDump(std::string(GE2GL_SOURCE_DIR) + "/dumps/" + name + ".ppdmp", d, err)) << err;
+        Replay r(d);
+        EXPECT_FALSE(r.res.timeLimitHit) << r.res.warning;
+        EXPECT_GT(r.res.geCycles, 0u);
+        EXPECT_LT(getime::msFromCycles(r.res.geCycles), dump::ReplayOptions::kDefaultMaxGeMs / 5);
+    }
+}
+
+TEST(GeTime, EstimateAddsUpAsDocumented) {
+    Memory mem;
+    NullRenderer nr;
+    GeEngine eng(mem, &nr);
+    ListBuilder b(&mem);
+    b.setVertexType(vt::POS_16 | vt::THROUGH);
+    const s16 v[6] = {0, 0, 0, 10, 10, 0};
+    b.drawArrayData(GE_PRIM_RECTANGLES, vt::POS_16 | vt::THROUGH, 2, nullptr, v);
+    b.copyImage(GE_FORMAT_8888, 0, 0, 8, 4, 64, 0x04000000, 0, 0, 64, 0x04100000);
+    b.finish();
+    eng.startList(b.placeList(), 0);
+    ASSERT_EQ(eng.run(), RunStatus::Completed);
+    const GeStats& s = eng.stats();
+    const u64 want = getime::kListStart + s.commands * getime::kPerCommand + 2 * 20 /* vertices */ +
+                     getime::transferCost(8 * 4 * 4) + getime::kEnd;
+    EXPECT_EQ(s.cycles, want);
+    // Lighting with two lights and a morphing vertex type cost more per vertex.
+    GeState st;
+    st.regs[GE_CMD_LTE] = word(GE_CMD_LTE, 1);
+    st.regs[GE_CMD_LE0] = word(GE_CMD_LE0, 1);
+    st.regs[GE_CMD_LE0 + 2] = word(GE_CMD_LE0 + 2, 1);
+    st.regs[GE_CMD_VTYPE] = word(GE_CMD_VTYPE, vt::morphs(3));
+    EXPECT_EQ(getime::perVertexCost(st), 20u + 10 + 2 * 7 + 5 * 3);
+}
+
+}  // namespace
