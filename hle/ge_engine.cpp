@@ -262,7 +262,7 @@ void GeEngine::doPrim(u32 arg) {
     pkt.indexAddr = state_.indexAddr;
     ++stats_.prims;
     stats_.vertices += count;
-    stats_.cycles += getime::perVertexCost(state_) * count;
+    if (!chargeDraw(getime::perVertexCost(state_) * count)) return;
     renderer_->drawPrim(pkt);
     chargePixels();
 
@@ -303,7 +303,7 @@ void GeEngine::doPatch(u32 word) {
         return spans * div + 1;
     };
     const u64 generated = std::min<u64>(side(pkt.ucount, pkt.divU) * side(pkt.vcount, pkt.divV), u64(1) << 21);
-    stats_.cycles += getime::perVertexCost(state_) * generated;
+    if (!chargeDraw(getime::perVertexCost(state_) * generated)) return;
     renderer_->drawPatch(pkt);
     chargePixels();
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
@@ -346,6 +346,26 @@ bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) 
 // Object culling (manual §11.1; ge-reference §3.1 BBOX notes): BFLG = 1 unless every vertex lies
 // outside the same edge of the drawing area (REGION ∩ SCISSOR widened by one pixel, placed in screen
 // space with OFFSETX/Y) or behind the near plane. An area touching the 4096 screen edge always passes.
+bool GeEngine::chargeDraw(u64 vertexCycles) {
+    if (cycleLimit_ == ~u64(0)) {
+        stats_.cycles += vertexCycles;
+        if (pixelBudgetSet_) renderer_->setPixelBudget(~u64(0)), pixelBudgetSet_ = false;
+        return true;
+    }
+    if (stats_.cycles + vertexCycles > cycleLimit_) {
+        // The draw alone would overrun the limit (a patch near the tessellation cap, a huge
+        // primitive count): it is not drawn.
+        stats_.cycles = cycleLimit_;
+        stopRequested_ = true;
+        stopStatus_ = RunStatus::TimeLimit;
+        return false;
+    }
+    stats_.cycles += vertexCycles;
+    renderer_->setPixelBudget((cycleLimit_ - stats_.cycles) * 3);  // pixelCost: 1/3 cycle a pixel
+    pixelBudgetSet_ = true;
+    return true;
+}
+
 void GeEngine::chargePixels() {
     const u64 w = renderer_->pixelWork();
     if (w > pixelWorkSeen_) stats_.cycles += getime::pixelCost(w - pixelWorkSeen_);
@@ -456,7 +476,7 @@ void GeEngine::flushImmediate() {
     pkt.vertices.swap(immVerts_);
     immVerts_.clear();
     ++stats_.immediates;
-    stats_.cycles += getime::perVertexCost(state_) * pkt.vertices.size();
+    if (!chargeDraw(getime::perVertexCost(state_) * pkt.vertices.size())) return;
     renderer_->drawImmediate(pkt);
     chargePixels();
 }

@@ -129,6 +129,9 @@ private:
     bool jumpTo(u32 target);
     void matrixData(u8 op, u32 arg);
     void chargePixels();  // adds the renderer's new pixel work to the GE-time estimate
+    // Charges the vertex work of a draw; false (and the run stops with TimeLimit) when it does not
+    // fit in what is left of the GE-time limit. Hands the renderer the pixels that remain.
+    bool chargeDraw(u64 vertexCycles);
 
     Memory& mem_;
     Renderer* renderer_ = nullptr;
@@ -143,6 +146,7 @@ private:
     u32 dirty_ = DIRTY_ALL;
     u64 cycleLimit_ = ~u64(0);
     u64 pixelWorkSeen_ = 0;
+    bool pixelBudgetSet_ = false;
     bool pauseRequested_ = false;
     bool stopRequested_ = false;
     RunStatus stopStatus_ = RunStatus::Idle;

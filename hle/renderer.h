@@ -101,6 +101,10 @@ public:
     // clipped bounding boxes), for the GE-time estimate (hle/ge_time.h). 0 for a backend that
     // does not rasterise.
     virtual u64 pixelWork() const { return 0; }
+    // The draws that follow may add at most `pixels` to pixelWork(): primitives beyond it are
+    // dropped, though still counted in pixelWork() so that the engine sees its limit passed (the
+    // GE-time limit reaching into a single huge draw). ~0: no limit.
+    virtual void setPixelBudget(u64 /*pixels*/) {}
 };
 
 // A backend that draws nothing, for exercising the decoder (it still performs transfers).

@@ -386,7 +386,15 @@ struct SoftRenderer::Impl {
         p.prov = prov;
         const ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
         if (!primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
-        pixelWork += primitivePixelBound(rp, kind, v, p.y1, p.y2);
+        const u64 bound = primitivePixelBound(rp, kind, v, p.y1, p.y2);
+        if (bound > pixelBudgetLeft) {  // the GE-time limit reached into this draw: dropped,
+            pixelBudgetLeft = 0;        // but charged, so the engine sees the limit passed
+            pixelWork += bound;
+            ++stats.budgetDropped;
+            return;
+        }
+        pixelBudgetLeft -= bound;
+        pixelWork += bound;
         scratchPrims.push_back(p);
     }
 
@@ -581,6 +589,7 @@ struct SoftRenderer::Impl {
     TextureCachePtr cache;
     SoftStats stats;
     u64 pixelWork = 0;  // Renderer::pixelWork: bounding boxes of the primitives queued
+    u64 pixelBudgetLeft = ~u64(0);  // Renderer::setPixelBudget
     int threads = 1;
 
     Batch batches[2];
@@ -774,6 +783,7 @@ void SoftRenderer::memoryWritten(u32 addr, u32 size) {
 void SoftRenderer::flushToMemory() { impl_->waitIdle(); }
 
 u64 SoftRenderer::pixelWork() const { return impl_->pixelWork; }
+void SoftRenderer::setPixelBudget(u64 pixels) { impl_->pixelBudgetLeft = pixels; }
 
 std::unique_ptr<ge::Renderer> createSoftRenderer(ge::Memory& mem, const SoftOptions& opt) {
     return std::make_unique<SoftRenderer>(mem, opt);

@@ -31,6 +31,7 @@ struct SoftStats {
     u64 clipped = 0;         // primitives cut at the near plane
     u64 batches = 0;
     u64 badDraws = 0;        // draws whose vertex or index data was not valid memory
+    u64 budgetDropped = 0;   // primitives dropped at the GE-time limit (setPixelBudget)
 };
 
 class SoftRenderer : public Renderer {
@@ -52,6 +53,7 @@ public:
     void memoryWritten(u32 addr, u32 size) override;
     void flushToMemory() override;
     u64 pixelWork() const override;
+    void setPixelBudget(u64 pixels) override;
 
     int threadCount() const;
     const SoftStats& stats() const;

@@ -138,6 +138,52 @@ TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
     }
 }
 
+// One draw can hold more work than the budget: a 57,300-vertex fan of screen-sized triangles is
+// cut inside the draw (the engine hands the backend the pixels left, later primitives are
+// dropped), and a patch whose tessellation alone overruns the budget is not drawn at all.
+TEST(ReplayBudget, HugeDrawsAreCutInsideTheDraw) {
+    for (bool patch : {false, true}) {
+        SCOPED_TRACE(patch ? "Bezier patch at the tessellation cap" : "57,300-vertex fan");
+        dump::DumpWriter w = startDump();
+        ListBuilder s;
+        s.drawBuffer(GE_FORMAT_8888, 0, 512);
+        s.scissor(0, 0, 480, 272);
+        s.region(0, 0, 480, 272);
+        constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        s.setVertexType(vtype);
+        if (patch) s.patchDivide(127, 127);
+        w.registers(s.words());
+        u32 word0;
+        std::vector<BuildVertex> v;
+        if (patch) {
+            v.resize(100 * 100);  // 33 × 33 patches of 128 × 128 vertices: capped at 2^21
+            for (size_t i = 0; i < v.size(); ++i) v[i].x = float(i % 100), v[i].y = float(i / 100);
+            word0 = word(GE_CMD_BEZIER, (100 << 8) | 100);
+        } else {
+            v.resize(57300);  // centre, then a zigzag between two far corners: every triangle large
+            v[0].x = 240, v[0].y = 136;
+            for (size_t i = 1; i < v.size(); ++i) v[i].x = (i & 1) ? 0 : 479, v[i].y = (i & 2) ? 0 : 271;
+            word0 = word(GE_CMD_PRIM, (GE_PRIM_TRIANGLE_FAN << 16) | 57300);
+        }
+        const auto bytes = packVertices(vtype, v.data(), u32(v.size()));
+        w.vertices(bytes.data(), u32(bytes.size()));
+        w.registers({word0});
+        w.display(0x04000000, 512, GE_FORMAT_8888);
+        Replay r(w.dump());
+        EXPECT_TRUE(r.res.timeLimitHit) << r.res.warning;
+        const auto* soft = dynamic_cast<const soft::SoftRenderer*>(r.r.get());
+        ASSERT_NE(soft, nullptr);
+        if (patch) {
+            EXPECT_EQ(soft->stats().patches, 0u);  // refused before tessellation
+        } else {
+            // Triangles of about 240 × 272 pixels: some 1,700 fit in the budget, the rest are dropped.
+            const u64 fit = getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs) * 3 / (240 * 272);
+            EXPECT_LT(soft->stats().primitives, fit * 2);
+            EXPECT_GT(soft->stats().budgetDropped, 57298u - fit * 2);
+        }
+    }
+}
+
 TEST(GeTime, EstimateAddsUpAsDocumented) {
     Memory mem;
     NullRenderer nr;

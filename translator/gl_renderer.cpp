@@ -129,6 +129,7 @@ public:
 
     // ---- Renderer ----
     u64 pixelWork() const override { return pipeline_.pixelWork(); }
+    void setPixelBudget(u64 pixels) override { pipeline_.setPixelBudget(pixels); }
 
     // Geometry is built before the draw's setup: the setup depends on the primitives' colours
     // (the reference's skipped alpha test, softmodel/blend.h referenceSkipsAlphaTest).

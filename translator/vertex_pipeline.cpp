@@ -133,22 +133,30 @@ bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVerte
     return vs_.cullCcw ? area < 0 : area > 0;
 }
 
-void VertexPipeline::notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+bool VertexPipeline::notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                                    const soft::ScreenVertex& c, const soft::ScreenVertex& prov) {
     const soft::ScreenVertex* v[3] = {&a, &b, &c};
     int y1, y2;
     const soft::RasterParams rp = rasterParams();
-    if (!soft::primitiveRows(rp, kind, v, y1, y2)) return;  // wholly outside: not drawn
-    pixelWork_ += soft::primitivePixelBound(rp, kind, v, y1, y2);
-    if (!alphaFull_) return;
+    if (!soft::primitiveRows(rp, kind, v, y1, y2)) return true;  // wholly outside: draws nothing
+    const u64 bound = soft::primitivePixelBound(rp, kind, v, y1, y2);
+    if (bound > pixelBudgetLeft_) {  // the GE-time limit reached into this draw (as the software model):
+        pixelBudgetLeft_ = 0;        // dropped but charged
+        pixelWork_ += bound;
+        return false;
+    }
+    pixelBudgetLeft_ -= bound;
+    pixelWork_ += bound;
+    if (!alphaFull_) return true;
     const bool perVertex = vs_.gouraud && kind != soft::PrimKind::Rect;
     if (prov.color[3] != 255) alphaFull_ = false;
     if (perVertex && (a.color[3] != 255 || b.color[3] != 255 || c.color[3] != 255)) alphaFull_ = false;
+    return true;
 }
 
 void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                                   const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
-    notePrimitive(soft::PrimKind::Triangle, a, b, c, prov);
+    if (!notePrimitive(soft::PrimKind::Triangle, a, b, c, prov)) return;
     if (s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x) == 0) {
         // A zero-area triangle covers only samples exactly on its line, with the reference's
         // degenerate attributes (softmodel/raster.cpp rasterZeroAreaTriangle): the software
@@ -201,7 +209,7 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
 }
 
 void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
-    notePrimitive(soft::PrimKind::Rect, v0, v1, v1, v1);
+    if (!notePrimitive(soft::PrimKind::Rect, v0, v1, v1, v1)) return;
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
     if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ref §8.11)
@@ -348,7 +356,7 @@ void VertexPipeline::line(u32 ia, u32 ib) {
     soft::ClipVertex a = *v[0], b = *v[1];
     if (!ts_.through && (soft::beyondNear(a) || soft::beyondNear(b)))
         if (!soft::clipLineNear(ts_, a, b)) return;
-    notePrimitive(soft::PrimKind::Line, a.sv, b.sv, b.sv, b.sv);
+    if (!notePrimitive(soft::PrimKind::Line, a.sv, b.sv, b.sv, b.sv)) return;
     fragBuf_.resize(kFragmentBuffer);
     soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
     soft::rasterLine(rasterParams(), a.sv, b.sv, soft::Band{}, sink);
@@ -358,7 +366,7 @@ void VertexPipeline::line(u32 ia, u32 ib) {
 void VertexPipeline::point(u32 ia) {
     const soft::ClipVertex* v[1] = {&cverts_[ia]};
     if (!v[0]->valid || soft::discardPrimitive(ts_, v, 1)) return;
-    notePrimitive(soft::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv);
+    if (!notePrimitive(soft::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv)) return;
     fragBuf_.resize(kFragmentBuffer);
     soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
     soft::rasterPoint(rasterParams(), v[0]->sv, soft::Band{}, sink);

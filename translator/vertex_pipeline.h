@@ -90,6 +90,7 @@ public:
     bool drawAlphaFull() const { return alphaFull_; }
     // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h).
     u64 pixelWork() const { return pixelWork_; }
+    void setPixelBudget(u64 pixels) { pixelBudgetLeft_ = pixels; }
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
@@ -109,7 +110,8 @@ private:
     bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
     soft::RasterParams rasterParams() const;
     // Per primitive the backend draws: its pixel bound (pixelWork) and its colours (drawAlphaFull).
-    void notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
+    // False: the pixel budget is used up, the primitive is dropped.
+    bool notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
                        const soft::ScreenVertex& c, const soft::ScreenVertex& prov);
     static void sinkFlush(void* ctx, const soft::Fragment* f, size_t n);
 
@@ -120,6 +122,7 @@ private:
     Geometry* out_ = nullptr;
     bool alphaFull_ = true;
     u64 pixelWork_ = 0;
+    u64 pixelBudgetLeft_ = ~u64(0);
 
     std::vector<DecodedVertex> decoded_;
     std::vector<soft::ClipVertex> cverts_;
