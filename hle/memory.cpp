@@ -1,22 +1,67 @@
 #include "hle/memory.h"
 
+#include <sys/mman.h>
+
 #include <algorithm>
+#include <mutex>
+#include <new>
 
 namespace ge {
 
-Memory::Memory(u32 ramSize)
-    : ownedRam_(new u8[ramSize]()), ownedVram_(new u8[kVramSize]()), ram_(ownedRam_.get()),
-      vram_(ownedVram_.get()), ramSize_(ramSize) {
-    rebuildMirrorTables();
+namespace {
+
+// Zeroed pages on first touch; nothing is written or reserved up front.
+u8* mapZeroed(size_t size) {
+    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    return static_cast<u8*>(p);
+}
+
+// Makes a mapping made by mapZeroed read zero again, giving its touched pages back.
+void rezero(u8* p, size_t size) {
+    if (madvise(p, size, MADV_DONTNEED) != 0) std::memset(p, 0, size);
+}
+
+}  // namespace
+
+Memory::Memory(u32 ramSize) : ramSize_(ramSize) {
+    vram_ = mapZeroed(kVramSize);
+    ownsVram_ = true;
+    if (ramSize_) {
+        try {
+            ram_ = mapZeroed(ramSize_);
+        } catch (...) {
+            munmap(vram_, kVramSize);
+            throw;
+        }
+        ownsRam_ = true;
+    }
 }
 
 Memory::Memory(u8* hostRam, u32 ramSize, u8* hostVram) : ram_(hostRam), vram_(hostVram), ramSize_(ramSize) {
     if (!vram_) {
-        ownedVram_.reset(new u8[kVramSize]());
-        vram_ = ownedVram_.get();
+        vram_ = mapZeroed(kVramSize);
+        ownsVram_ = true;
     }
     if (!ram_) ramSize_ = 0;
-    rebuildMirrorTables();
+}
+
+Memory::~Memory() {
+    if (ownsRam_) munmap(ram_, ramSize_);
+    if (ownsVram_) munmap(vram_, kVramSize);
+}
+
+void Memory::clear() {
+    if (ram_ && ramSize_) {
+        if (ownsRam_) rezero(ram_, ramSize_);
+        else std::memset(ram_, 0, ramSize_);
+    }
+    if (ownsVram_) rezero(vram_, kVramSize);
+    else std::memset(vram_, 0, kVramSize);
+    std::memset(scratch_, 0, sizeof scratch_);
+    edramTrans_ = 0x400;
+    badAccesses_ = 0;
+    lastBad_ = 0;
 }
 
 const u8* Memory::ptr(u32 addr, u32 size) const {
@@ -102,13 +147,13 @@ bool Memory::fill(u32 addr, u8 value, u32 size) {
 bool Memory::setEdramTranslation(u32 value) {
     if (value != 0 && value != 0x200 && value != 0x400 && value != 0x800 && value != 0x1000) return false;
     edramTrans_ = value;
-    rebuildMirrorTables();
     return true;
 }
 
 // Mirror permutations measured on hardware (ge-reference.md §7.3, pat gpu/ge/edramswizzle).
-u32 Memory::linearToMirror(u32 i, int mirror) const {
-    const u32 T = edramTrans_;
+namespace {
+
+u32 linearToMirrorFor(u32 T, u32 i, int mirror) {
     switch (mirror & 3) {
     case 0:
     case 2: return i;
@@ -132,9 +177,21 @@ u32 Memory::linearToMirror(u32 i, int mirror) const {
     }
 }
 
-void Memory::rebuildMirrorTables() {
-    m3ToLinear_.assign(0x10000, 0);
-    for (u32 i = 0; i < 0x10000; ++i) m3ToLinear_[linearToMirror(i, 3) & 0xFFFF] = u16(i);
+}  // namespace
+
+u32 Memory::linearToMirror(u32 i, int mirror) const { return linearToMirrorFor(edramTrans_, i, mirror); }
+
+const u16* Memory::mirror3Inverse(u32 edramTrans) {
+    // One table per valid translation value (0, 0x200, 0x400, 0x800, 0x1000), built once.
+    static std::once_flag once[5];
+    static std::unique_ptr<u16[]> tables[5];
+    const int slot = edramTrans == 0 ? 0 : edramTrans == 0x200 ? 1 : edramTrans == 0x400 ? 2 : edramTrans == 0x800 ? 3 : 4;
+    std::call_once(once[slot], [&] {
+        auto t = std::make_unique<u16[]>(0x10000);
+        for (u32 i = 0; i < 0x10000; ++i) t[linearToMirrorFor(edramTrans, i, 3) & 0xFFFF] = u16(i);
+        tables[slot] = std::move(t);
+    });
+    return tables[slot].get();
 }
 
 u32 Memory::mirrorToLinear(u32 off, int mirror) const {
@@ -142,7 +199,7 @@ u32 Memory::mirrorToLinear(u32 off, int mirror) const {
     case 0:
     case 2: return off;
     case 1: return linearToMirror(off, 1);  // XOR: its own inverse
-    default: return (off & ~0xFFFFu) | m3ToLinear_[off & 0xFFFF];
+    default: return (off & ~0xFFFFu) | mirror3Inverse(edramTrans_)[off & 0xFFFF];
     }
 }
 

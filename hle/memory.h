@@ -9,6 +9,11 @@
 // address the same linear bytes (as PPSSPP does); readMirrored()/writeMirrored() give the exact
 // byte permutation measured on hardware for mirrors 1 and 3 (ge-reference.md §7.3), for CPU-side
 // reads and writes through the swizzled views.
+//
+// Owned RAM and VRAM are anonymous private mappings (MAP_NORESERVE): the kernel hands out zeroed
+// pages on first touch, so a Memory costs nothing proportional to its 64 MiB address space, and a
+// replay pays only for the pages it writes (ge2gl bench --backend null). clear() gives the pages
+// back (madvise(MADV_DONTNEED)) so one Memory can serve many replays.
 #pragma once
 #include <memory>
 #include <vector>
@@ -27,9 +32,16 @@ public:
     explicit Memory(u32 ramSize = kDefaultRamSize);
     // Wrap host-owned buffers (plugin API): nothing is copied or freed by Memory.
     Memory(u8* hostRam, u32 ramSize, u8* hostVram);
+    ~Memory();
 
     Memory(const Memory&) = delete;
     Memory& operator=(const Memory&) = delete;
+
+    // Back to the state of a fresh Memory of the same size: RAM, VRAM and scratchpad read zero,
+    // eDRAM translation 0x400, no bad accesses counted. Owned pages are returned to the kernel
+    // (cost proportional to the pages touched, not to the address space); host-owned buffers
+    // are zero-filled.
+    void clear();
 
     static u32 normalize(u32 addr) { return addr & 0x0FFFFFFF; }
     static bool isVram(u32 addr) {
@@ -83,15 +95,16 @@ public:
     }
 
 private:
-    void rebuildMirrorTables();
+    // Inverse of the mirror-3 permutation on the low 16 bits for one translation value: built on
+    // first use and shared by every Memory of the process (only CPU-side mirrored access needs it).
+    static const u16* mirror3Inverse(u32 edramTrans);
 
-    std::unique_ptr<u8[]> ownedRam_, ownedVram_;
+    bool ownsRam_ = false, ownsVram_ = false;  // anonymous mappings to munmap
     u8* ram_ = nullptr;
     u8* vram_ = nullptr;
     u32 ramSize_ = 0;
     u8 scratch_[kScratchSize] = {};
     u32 edramTrans_ = 0x400;
-    std::vector<u16> m3ToLinear_;  // inverse of the mirror-3 permutation on the low 16 bits
     mutable u64 badAccesses_ = 0;
     mutable u32 lastBad_ = 0;
 };
