@@ -14,10 +14,11 @@ namespace {
 void replayBench(benchmark::State& state, dump::Dump d, std::string backend) {
     tools::RenderOptions opt;
     opt.backend = backend;
+    Memory mem;  // reused by every iteration, as `ge2gl bench` does
     for (auto _ : state) {
         tools::RenderOutput out;
         std::string err;
-        if (!tools::renderDump(d, opt, out, err)) {
+        if (!tools::renderDump(d, opt, out, err, nullptr, nullptr, &mem)) {
             state.SkipWithError(err.c_str());
             break;
         }

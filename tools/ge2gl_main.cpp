@@ -216,6 +216,7 @@ int cmdCompare(const std::vector<std::string>& files, const tools::RenderOptions
 int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& opt, int repeat) {
     std::printf("%-60s %10s %10s\n", "dump", "median s", "min s");
     std::vector<double> medians;
+    Memory mem;  // one emulated memory for every run, cleared before each (Memory::clear)
     for (const auto& path : files) {
         dump::Dump d;
         std::string err;
@@ -223,7 +224,7 @@ int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& 
         std::vector<double> t;
         for (int i = 0; i < repeat; ++i) {
             tools::RenderOutput out;
-            if (!tools::renderDump(d, opt, out, err)) return fail(path + ": " + err);
+            if (!tools::renderDump(d, opt, out, err, nullptr, nullptr, &mem)) return fail(path + ": " + err);
             t.push_back(out.seconds);
         }
         std::sort(t.begin(), t.end());

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
 #include "softmodel/soft_renderer.h"
 #ifdef GE2GL_HAVE_GL
@@ -50,9 +51,11 @@ std::string backendStats(const std::string& backend, const Renderer& r) {
 }
 
 bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
-                std::vector<u8>* vramOut, std::vector<u16>* depthOut) {
+                std::vector<u8>* vramOut, std::vector<u16>* depthOut, Memory* reuse) {
     auto t0 = std::chrono::steady_clock::now();
-    Memory mem;
+    std::optional<Memory> fresh;
+    if (reuse) reuse->clear();
+    Memory& mem = reuse ? *reuse : fresh.emplace();
     std::unique_ptr<Renderer> r = createBackend(opt, mem, err);
     if (!r) return false;
     GeEngine eng(mem, r.get());

@@ -38,8 +38,10 @@ std::string backendStats(const std::string& backend, const Renderer& r);
 // frame (linear view, exactly as a game reading 0x04000000–0x041FFFFF sees it).
 bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOutput& out, std::string& err,
                     std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr);
+// `reuse`, when non-null, is cleared (Memory::clear) and replayed into instead of a fresh Memory:
+// `ge2gl bench` keeps one for all its runs; it holds the frame afterwards.
 bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
-                std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr);
+                std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr, Memory* reuse = nullptr);
 
 // "NAME" of a dump path: file name without directories and without .zip / .ppdmp suffixes.
 std::string dumpName(const std::string& path);
