@@ -1,5 +1,13 @@
 // Context creation and capability detection (see gl_context.h).
+//
+// libOSMesa and libEGL are not linked: they (and libLLVM behind llvmpipe, ~60 MiB mapped and
+// ~0.1 s of loading) are dlopen()ed the first time a context of that kind is created, so
+// processes that never draw with GL (soft/null backends, info, disasm) map none of them. The
+// headers give the function types; every OSMesa*/egl* entry point used goes through the tables
+// below.
 #include "translator/gl_context.h"
+
+#include <dlfcn.h>
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -11,6 +19,111 @@
 #include "translator/gl_renderer.h"
 
 namespace ge::gl {
+
+namespace {
+
+// Opens the first library of `names` that loads (the Debian sonames first, then the unversioned
+// development names) and says which in `opened`. RTLD_LOCAL: the gl* symbols both libraries
+// export stay out of the global namespace. With `noload`, only a library already in the process.
+void* openFirst(std::initializer_list<const char*> names, bool noload, const char*& opened, std::string& tried) {
+    for (const char* n : names) {
+        if (void* h = dlopen(n, RTLD_NOW | RTLD_LOCAL | (noload ? RTLD_NOLOAD : 0))) {
+            opened = n;
+            return h;
+        }
+        const char* e = dlerror();
+        if (!tried.empty()) tried += "; ";
+        tried += e ? e : n;
+    }
+    return nullptr;
+}
+
+template <typename F>
+bool resolve(void* lib, const char* name, F& fn, std::string& missing) {
+    fn = reinterpret_cast<F>(dlsym(lib, name));
+    if (!fn && missing.empty()) missing = name;
+    return fn != nullptr;
+}
+
+#define GE2GL_OSMESA_NAMES {"libOSMesa.so.8", "libOSMesa.so"}
+#define GE2GL_EGL_NAMES {"libEGL.so.1", "libEGL.so"}
+
+struct OsmesaApi {
+    decltype(&::OSMesaCreateContextAttribs) CreateContextAttribs = nullptr;
+    decltype(&::OSMesaDestroyContext) DestroyContext = nullptr;
+    decltype(&::OSMesaMakeCurrent) MakeCurrent = nullptr;
+    decltype(&::OSMesaGetCurrentContext) GetCurrentContext = nullptr;
+    decltype(&::OSMesaGetProcAddress) GetProcAddress = nullptr;
+    std::string error;  // empty when the library loaded and every entry point resolved
+
+    bool resolveAll(void* lib, std::string& missing) {
+        return resolve(lib, "OSMesaCreateContextAttribs", CreateContextAttribs, missing) &
+               resolve(lib, "OSMesaDestroyContext", DestroyContext, missing) &
+               resolve(lib, "OSMesaMakeCurrent", MakeCurrent, missing) &
+               resolve(lib, "OSMesaGetCurrentContext", GetCurrentContext, missing) &
+               resolve(lib, "OSMesaGetProcAddress", GetProcAddress, missing);
+    }
+};
+
+struct EglApi {
+    decltype(&::eglGetProcAddress) GetProcAddress = nullptr;
+    decltype(&::eglInitialize) Initialize = nullptr;
+    decltype(&::eglTerminate) Terminate = nullptr;
+    decltype(&::eglBindAPI) BindAPI = nullptr;
+    decltype(&::eglChooseConfig) ChooseConfig = nullptr;
+    decltype(&::eglCreateContext) CreateContext = nullptr;
+    decltype(&::eglDestroyContext) DestroyContext = nullptr;
+    decltype(&::eglMakeCurrent) MakeCurrent = nullptr;
+    std::string error;
+
+    bool resolveAll(void* lib, std::string& missing) {
+        return resolve(lib, "eglGetProcAddress", GetProcAddress, missing) &
+               resolve(lib, "eglInitialize", Initialize, missing) & resolve(lib, "eglTerminate", Terminate, missing) &
+               resolve(lib, "eglBindAPI", BindAPI, missing) & resolve(lib, "eglChooseConfig", ChooseConfig, missing) &
+               resolve(lib, "eglCreateContext", CreateContext, missing) &
+               resolve(lib, "eglDestroyContext", DestroyContext, missing) &
+               resolve(lib, "eglMakeCurrent", MakeCurrent, missing);
+    }
+};
+
+template <typename Api>
+Api loadApi(std::initializer_list<const char*> names, const char* what) {
+    Api api;
+    std::string tried, missing;
+    const char* opened = nullptr;
+    if (void* lib = openFirst(names, false, opened, tried)) {
+        if (!api.resolveAll(lib, missing))
+            api.error = std::string(what) + ": " + opened + " lacks " + missing;
+    } else {
+        api.error = std::string("cannot load ") + what + " (" + tried + ")";
+    }
+    return api;
+}
+
+// Loaded on first use, once per process (thread-safe static initialisation); never unloaded.
+const OsmesaApi& osmesa() {
+    static const OsmesaApi api = loadApi<OsmesaApi>(GE2GL_OSMESA_NAMES, "OSMesa");
+    return api;
+}
+
+const EglApi& egl() {
+    static const EglApi api = loadApi<EglApi>(GE2GL_EGL_NAMES, "EGL");
+    return api;
+}
+
+// OSMesa's table only when libOSMesa is already in the process (a host that made an OSMesa
+// context current); never loads it.
+const OsmesaApi* osmesaIfLoaded() {
+    std::string tried;
+    const char* opened = nullptr;
+    void* lib = openFirst(GE2GL_OSMESA_NAMES, true, opened, tried);
+    if (!lib) return nullptr;
+    const OsmesaApi& api = osmesa();
+    dlclose(lib);  // the reference RTLD_NOLOAD took; osmesa() holds its own
+    return api.error.empty() ? &api : nullptr;
+}
+
+}  // namespace
 
 shadergen::HostCaps GlCaps::hostCaps(bool baseline, bool floatInterp) const {
     shadergen::HostCaps c;
@@ -39,14 +152,14 @@ std::string GlCaps::summary() const {
 GlContext::~GlContext() {
     if (osmesa_) {
         // Unbind first so OSMesa releases the framebuffer it made for the current binding.
-        if (OSMesaGetCurrentContext() == static_cast<OSMesaContext>(osmesa_))
-            OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);
-        OSMesaDestroyContext(static_cast<OSMesaContext>(osmesa_));
+        const OsmesaApi& os = osmesa();
+        if (os.GetCurrentContext() == static_cast<OSMesaContext>(osmesa_)) os.MakeCurrent(nullptr, nullptr, 0, 0, 0);
+        os.DestroyContext(static_cast<OSMesaContext>(osmesa_));
     }
     if (eglContext_) {
         EGLDisplay d = static_cast<EGLDisplay>(eglDisplay_);
-        eglMakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        eglDestroyContext(d, static_cast<EGLContext>(eglContext_));
+        egl().MakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        egl().DestroyContext(d, static_cast<EGLContext>(eglContext_));
         // No eglTerminate: the surfaceless display is one per process and shared by every EGL
         // renderer (eglGetPlatformDisplay returns the same handle); terminating it here would
         // pull the driver from under the others.
@@ -55,9 +168,9 @@ GlContext::~GlContext() {
 
 bool GlContext::makeCurrent() {
     if (osmesa_)
-        return OSMesaMakeCurrent(static_cast<OSMesaContext>(osmesa_), dummy_, GL_UNSIGNED_BYTE, 4, 4) == GL_TRUE;
+        return osmesa().MakeCurrent(static_cast<OSMesaContext>(osmesa_), dummy_, GL_UNSIGNED_BYTE, 4, 4) == GL_TRUE;
     if (eglContext_)
-        return eglMakeCurrent(static_cast<EGLDisplay>(eglDisplay_), EGL_NO_SURFACE, EGL_NO_SURFACE,
+        return egl().MakeCurrent(static_cast<EGLDisplay>(eglDisplay_), EGL_NO_SURFACE, EGL_NO_SURFACE,
                               static_cast<EGLContext>(eglContext_)) == EGL_TRUE;
     return true;  // Current: the host keeps it current
 }
@@ -66,10 +179,15 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
     std::unique_ptr<GlContext> ctx(new GlContext());
     ctx->kind_ = kind;
     if (kind == ContextKind::OSMesa) {
+        const OsmesaApi& os = osmesa();
+        if (!os.error.empty()) {
+            err = os.error;
+            return nullptr;
+        }
         const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS, 0,
                                OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_CORE_PROFILE,
                                OSMESA_CONTEXT_MAJOR_VERSION, 3, OSMESA_CONTEXT_MINOR_VERSION, 3, 0};
-        OSMesaContext c = OSMesaCreateContextAttribs(attribs, nullptr);
+        OSMesaContext c = os.CreateContextAttribs(attribs, nullptr);
         if (!c) {
             err = "OSMesaCreateContextAttribs failed (no GL 3.3 core profile)";
             return nullptr;
@@ -80,39 +198,44 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
             return nullptr;
         }
         if (const char* missing =
-                ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(OSMesaGetProcAddress(n)); })) {
+                ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(osmesa().GetProcAddress(n)); })) {
             err = std::string("OSMesa lacks ") + missing;
             return nullptr;
         }
     } else if (kind == ContextKind::EGL) {
+        const EglApi& e = egl();
+        if (!e.error.empty()) {
+            err = e.error;
+            return nullptr;
+        }
         auto getPlatformDisplay =
-            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(e.GetProcAddress("eglGetPlatformDisplayEXT"));
         if (!getPlatformDisplay) {
             err = "EGL: eglGetPlatformDisplayEXT unavailable";
             return nullptr;
         }
         EGLDisplay d = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (d == EGL_NO_DISPLAY || !eglInitialize(d, nullptr, nullptr)) {
+        if (d == EGL_NO_DISPLAY || !e.Initialize(d, nullptr, nullptr)) {
             err = "EGL: surfaceless platform unavailable";
             return nullptr;
         }
         ctx->eglDisplay_ = d;
-        if (!eglBindAPI(EGL_OPENGL_API)) {
+        if (!e.BindAPI(EGL_OPENGL_API)) {
             err = "EGL: desktop OpenGL API unavailable";
-            eglTerminate(d);
+            e.Terminate(d);
             ctx->eglDisplay_ = nullptr;
             return nullptr;
         }
         const EGLint cfgAttr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
         EGLConfig cfg = nullptr;
         EGLint n = 0;
-        if (!eglChooseConfig(d, cfgAttr, &cfg, 1, &n) || n < 1) cfg = nullptr;  // no-config contexts are fine
+        if (!e.ChooseConfig(d, cfgAttr, &cfg, 1, &n) || n < 1) cfg = nullptr;  // no-config contexts are fine
         const EGLint ctxAttr[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
                                   EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-        EGLContext c = eglCreateContext(d, cfg, EGL_NO_CONTEXT, ctxAttr);
+        EGLContext c = e.CreateContext(d, cfg, EGL_NO_CONTEXT, ctxAttr);
         if (c == EGL_NO_CONTEXT) {
             err = "EGL: eglCreateContext (3.3 core) failed";
-            eglTerminate(d);
+            e.Terminate(d);
             ctx->eglDisplay_ = nullptr;
             return nullptr;
         }
@@ -121,18 +244,24 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
             err = "EGL: eglMakeCurrent (surfaceless) failed";
             return nullptr;
         }
-        if (const char* missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(eglGetProcAddress(n)); })) {
+        if (const char* missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(egl().GetProcAddress(n)); })) {
             err = std::string("EGL lacks ") + missing;
             return nullptr;
         }
     } else {
-        // Host context: OSMesa's if one is current, else ask EGL (Mesa/glvnd resolve core entry
-        // points for any current context).
+        // Host context: OSMesa's if the host has libOSMesa loaded and one of its contexts current,
+        // else ask EGL (Mesa/glvnd resolve core entry points for any current context).
         const char* missing = nullptr;
-        if (OSMesaGetCurrentContext())
-            missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(OSMesaGetProcAddress(n)); });
-        else
-            missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(eglGetProcAddress(n)); });
+        const OsmesaApi* os = osmesaIfLoaded();
+        if (os && os->GetCurrentContext()) {
+            missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(osmesa().GetProcAddress(n)); });
+        } else {
+            if (!egl().error.empty()) {
+                err = "no OSMesa context current and " + egl().error;
+                return nullptr;
+            }
+            missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(egl().GetProcAddress(n)); });
+        }
         if (missing) {
             err = std::string("current context lacks ") + missing;
             return nullptr;
