@@ -1,6 +1,7 @@
 #include "hle/memory.h"
 
 #include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <mutex>
@@ -10,16 +11,33 @@ namespace ge {
 
 namespace {
 
-// Zeroed pages on first touch; nothing is written or reserved up front.
-u8* mapZeroed(size_t size) {
-    void* p = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    if (p == MAP_FAILED) throw std::bad_alloc();
-    return static_cast<u8*>(p);
+size_t pageSize() {
+    static const size_t size = size_t(::sysconf(_SC_PAGESIZE));
+    return size;
 }
+
+size_t pageRound(size_t n) { return (n + pageSize() - 1) / pageSize() * pageSize(); }
+
+// Zeroed pages on first touch; nothing is written or reserved up front. An inaccessible page on
+// either side makes a host access that runs off the region fault at once (the heap redzones the
+// old new[] buffers had under ASan; exact at the end for page-multiple sizes, as RAM and VRAM are).
+u8* mapZeroed(size_t size) {
+    const size_t total = pageRound(size) + 2 * pageSize();
+    void* p = mmap(nullptr, total, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (p == MAP_FAILED) throw std::bad_alloc();
+    u8* region = static_cast<u8*>(p) + pageSize();
+    if (mprotect(region, pageRound(size), PROT_READ | PROT_WRITE) != 0) {
+        munmap(p, total);
+        throw std::bad_alloc();
+    }
+    return region;
+}
+
+void unmapZeroed(u8* region, size_t size) { munmap(region - pageSize(), pageRound(size) + 2 * pageSize()); }
 
 // Makes a mapping made by mapZeroed read zero again, giving its touched pages back.
 void rezero(u8* p, size_t size) {
-    if (madvise(p, size, MADV_DONTNEED) != 0) std::memset(p, 0, size);
+    if (madvise(p, pageRound(size), MADV_DONTNEED) != 0) std::memset(p, 0, size);
 }
 
 }  // namespace
@@ -31,7 +49,7 @@ Memory::Memory(u32 ramSize) : ramSize_(ramSize) {
         try {
             ram_ = mapZeroed(ramSize_);
         } catch (...) {
-            munmap(vram_, kVramSize);
+            unmapZeroed(vram_, kVramSize);
             throw;
         }
         ownsRam_ = true;
@@ -47,8 +65,8 @@ Memory::Memory(u8* hostRam, u32 ramSize, u8* hostVram) : ram_(hostRam), vram_(ho
 }
 
 Memory::~Memory() {
-    if (ownsRam_) munmap(ram_, ramSize_);
-    if (ownsVram_) munmap(vram_, kVramSize);
+    if (ownsRam_) unmapZeroed(ram_, ramSize_);
+    if (ownsVram_) unmapZeroed(vram_, kVramSize);
 }
 
 void Memory::clear() {

@@ -13,7 +13,8 @@
 // Owned RAM and VRAM are anonymous private mappings (MAP_NORESERVE): the kernel hands out zeroed
 // pages on first touch, so a Memory costs nothing proportional to its 64 MiB address space, and a
 // replay pays only for the pages it writes (ge2gl bench --backend null). clear() gives the pages
-// back (madvise(MADV_DONTNEED)) so one Memory can serve many replays.
+// back (madvise(MADV_DONTNEED)) so one Memory can serve many replays. An inaccessible page guards
+// each side of both mappings.
 #pragma once
 #include <memory>
 #include <vector>

@@ -118,6 +118,31 @@ TEST(MemoryStorage, ClearZeroesAgainAndResetsState) {
     EXPECT_EQ(mem.readMirrored(Memory::kVramBase + 0x600000 + mem.linearToMirror(0, 3)), 0x5A);
 }
 
+TEST(MemoryStorage, HostAccessRunningOffTheRegionFaults) {
+    // Guard pages after RAM and VRAM (and before them): a backend bug that writes past what
+    // ptr() granted crashes at once instead of corrupting a neighbour.
+    GTEST_FLAG_SET(death_test_style, "threadsafe");
+    Memory mem(1u << 20);
+    EXPECT_DEATH(
+        {
+            volatile u8* end = mem.ram() + mem.ramSize();
+            *end = 1;
+        },
+        "");
+    EXPECT_DEATH(
+        {
+            volatile u8* end = mem.vram() + Memory::kVramSize;
+            *end = 1;
+        },
+        "");
+    EXPECT_DEATH(
+        {
+            volatile u8* before = mem.ram() - 1;
+            *before = 1;
+        },
+        "");
+}
+
 TEST(MemoryStorage, ClearZeroesHostOwnedBuffers) {
     std::vector<u8> ram(1 * kMiB, 0x11), vram(Memory::kVramSize, 0x22);
     Memory mem(ram.data(), u32(ram.size()), vram.data());
