@@ -153,11 +153,18 @@ struct Surface {
     // over its lava with GEQUAL, and the reference shows the lava in two streaks around the one
     // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (with depth
     // interpolation rounded to nearest as in raster.cpp: Coded Arms 89.0 -> 0.0001).
+    // The 16 control points of the point's patch, P[b][a] (row b along v, column a along u),
+    // looked up once per output vertex rather than once per attribute.
+    using Patch16 = const DecodedVertex* [4][4];
+    void gather(const Basis1D& bu, const Basis1D& bv, Patch16& P) const {
+        for (int b = 0; b < 4; ++b)
+            for (int a = 0; a < 4; ++a) P[b][a] = &cp(bu, bv, a, b);
+    }
     template <typename Get>
-    float sum(const Basis1D& bu, const Basis1D& bv, Get get) const {
+    static float sum(const Patch16& P, const Basis1D& bu, const Basis1D& bv, Get get) {
         auto row = [&](int b) {
-            float acc = get(cp(bu, bv, 0, b)) * bu.w[0];
-            for (int a = 1; a < 4; ++a) acc = acc + get(cp(bu, bv, a, b)) * bu.w[a];
+            float acc = get(*P[b][0]) * bu.w[0];
+            for (int a = 1; a < 4; ++a) acc = acc + get(*P[b][a]) * bu.w[a];
             return acc;
         };
         float acc = row(0) * bv.w[0];
@@ -165,22 +172,24 @@ struct Surface {
         return acc;
     }
 
-    // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv); splines weight
-    // by the global parameters (gu, gv) as the reference computes them.
-    DecodedVertex eval(u32 pu, float tu, float gu, u32 pv, float tv, float gv) const {
-        const Basis1D bu = basisU(pu, tu, gu), bv = basisV(pv, tv, gv);
+    // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv), with the basis
+    // values the caller computed once per column (bu) and per row (bv): basisU/basisV at the
+    // local parameter (Bezier) or at the global one (splines, as the reference computes them).
+    DecodedVertex eval(u32 pu, float tu, const Basis1D& bu, u32 pv, float tv, const Basis1D& bv) const {
+        Patch16 P;
+        gather(bu, bv, P);
         DecodedVertex out;
         float col[4] = {};
-        for (int c = 0; c < 3; ++c) out.pos[c] = sum(bu, bv, [c](const DecodedVertex& p) { return p.pos[c]; });
+        for (int c = 0; c < 3; ++c) out.pos[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.pos[c]; });
         if (hasUV)
-            for (int c = 0; c < 2; ++c) out.uv[c] = sum(bu, bv, [c](const DecodedVertex& p) { return p.uv[c]; });
+            for (int c = 0; c < 2; ++c) out.uv[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.uv[c]; });
         if (hasNormal)
-            for (int c = 0; c < 3; ++c) out.nrm[c] = sum(bu, bv, [c](const DecodedVertex& p) { return p.nrm[c]; });
+            for (int c = 0; c < 3; ++c) out.nrm[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.nrm[c]; });
         if (hasWeights)
             for (u32 c = 0; c < weightCount; ++c)
-                out.weights[c] = sum(bu, bv, [c](const DecodedVertex& p) { return p.weights[c]; });
+                out.weights[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.weights[c]; });
         if (hasColor)
-            for (int c = 0; c < 4; ++c) col[c] = sum(bu, bv, [c](const DecodedVertex& p) { return float(p.color[c]); });
+            for (int c = 0; c < 4; ++c) col[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return float(p.color[c]); });
         if (hasColor) {
             for (int c = 0; c < 4; ++c) {
                 const float v = std::floor(col[c] + 0.5f);
@@ -318,13 +327,20 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
         // As the reference: the weights at the global parameter (step index)·(1/div), the
         // generated texture coordinates patch + (step in patch)·(1/div).
         const u32 nu = patchesU * divU, nv = patchesV * divV;
+        // The u basis of every column, computed once for all rows.
+        std::vector<Basis1D> bus(nu + 1);
+        for (u32 i = 0; i <= nu; ++i) {
+            const u32 pu = std::min(i / divU, patchesU - 1);
+            bus[i] = s.basisU(pu, float(i - pu * divU) * invU, float(i) * invU);
+        }
         for (u32 j = 0; j <= nv; ++j) {
             const u32 pv = std::min(j / divV, patchesV - 1);
             const float tv = float(j - pv * divV) * invV, gv = float(j) * invV;
+            const Basis1D bv = s.basisV(pv, tv, gv);
             for (u32 i = 0; i <= nu; ++i) {
                 const u32 pu = std::min(i / divU, patchesU - 1);
-                const float tu = float(i - pu * divU) * invU, gu = float(i) * invU;
-                out.verts.push_back(s.eval(pu, tu, gu, pv, tv, gv));
+                const float tu = float(i - pu * divU) * invU;
+                out.verts.push_back(s.eval(pu, tu, bus[i], pv, tv, bv));
             }
         }
         if (out.prim == GE_PRIM_POINTS) {
@@ -335,14 +351,19 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
         return true;
     }
 
+    std::vector<Basis1D> bus(divU + 1);
     for (u32 pv = 0; pv < patchesV; ++pv)
         for (u32 pu = 0; pu < patchesU; ++pu) {
             const u32 base = u32(out.verts.size());
-            for (u32 j = 0; j <= divV; ++j)
-                for (u32 i = 0; i <= divU; ++i) {
-                    const float tu = local(i, divU, invU), tv = local(j, divV, invV);
-                    out.verts.push_back(s.eval(pu, tu, tu, pv, tv, tv));
-                }
+            for (u32 i = 0; i <= divU; ++i) {
+                const float tu = local(i, divU, invU);
+                bus[i] = s.basisU(pu, tu, tu);
+            }
+            for (u32 j = 0; j <= divV; ++j) {
+                const float tv = local(j, divV, invV);
+                const Basis1D bv = s.basisV(pv, tv, tv);
+                for (u32 i = 0; i <= divU; ++i) out.verts.push_back(s.eval(pu, local(i, divU, invU), bus[i], pv, tv, bv));
+            }
             if (out.prim != GE_PRIM_POINTS) appendGridIndices(base, divU, divV, p.patchPrim, out.indices);
         }
     if (out.prim == GE_PRIM_POINTS)
