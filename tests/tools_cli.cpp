@@ -145,6 +145,34 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
     fs::remove_all(t);
 }
 
+// Issue 12: numeric arguments are range-checked (no wrap-around), errors name the file once and
+// say why (errno text for I/O).
+TEST(Cli, NumbersAreRangeCheckedAndErrorsSayWhy) {
+    fs::path t = tmpDir();
+    const std::string out = " -o " + (t / "x.png").string();
+    for (const char* bad : {"-1", "99999999999999999999999", "1e3", "0x10", ""}) {
+        CliRun r = run("render " + scene("bezier_spline") + out + " --replay-end '" + bad + "'");
+        EXPECT_EQ(r.code, 2) << bad << ": " << r.out;
+        EXPECT_NE(r.out.find("--replay-end"), std::string::npos) << r.out;
+    }
+    EXPECT_EQ(run("render " + scene("bezier_spline") + out + " --replay-end 3").code, 0);
+    EXPECT_EQ(run("render " + scene("bezier_spline") + out + " --threads -2").code, 2);
+    EXPECT_EQ(run("compare " + scene("bezier_spline") + " --ref-backend soft --max-mse -1").code, 2);
+
+    CliRun missing = run("render /nonexistent/file.ppdmp" + out);
+    EXPECT_EQ(countLines(missing.out), 1u) << missing.out;
+    const size_t first = missing.out.find("/nonexistent/file.ppdmp");
+    ASSERT_NE(first, std::string::npos) << missing.out;
+    EXPECT_EQ(missing.out.find("/nonexistent/file.ppdmp", first + 1), std::string::npos) << missing.out;
+
+    if (fs::exists("/dev/full")) {
+        CliRun full = run("render " + scene("bezier_spline") + out + " --vram-out /dev/full");
+        EXPECT_EQ(full.code, 1);
+        EXPECT_NE(full.out.find("/dev/full: No space left on device"), std::string::npos) << full.out;
+    }
+    fs::remove_all(t);
+}
+
 }  // namespace
 
 namespace {

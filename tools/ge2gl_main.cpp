@@ -3,15 +3,19 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 
 #include "hle/disasm.h"
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
+#include "hle/ge_time.h"
 #include "tools/lib/image.h"
 #include "tools/lib/render.h"
 
@@ -19,6 +23,18 @@ using namespace ge;
 namespace fs = std::filesystem;
 
 namespace {
+
+// A whole number from 0 to `max` in decimal digits: no sign, no wrap-around, no overflow.
+CLI::Validator wholeNumber(u64 max) {
+    return CLI::Validator(
+        [max](std::string& v) -> std::string {
+            const std::string why = "must be a whole number from 0 to " + std::to_string(max);
+            if (v.empty() || v.size() > 19 || v.find_first_not_of("0123456789") != std::string::npos) return why;
+            if (std::stoull(v) > max) return why;
+            return {};
+        },
+        "0.." + std::to_string(max));
+}
 
 int fail(const std::string& msg) {
     std::fprintf(stderr, "ge2gl: %s\n", msg.c_str());
@@ -31,7 +47,7 @@ int cmdInfo(const std::vector<std::string>& files) {
         dump::Dump d;
         std::string err;
         if (!dump::loadDump(path, d, err)) {
-            rc = fail(path + ": " + err);
+            rc = fail(err);  // loader errors name the file
             continue;
         }
         dump::DumpSummary s = dump::summarize(d);
@@ -55,7 +71,9 @@ int cmdInfo(const std::vector<std::string>& files) {
 int cmdDisasm(const std::string& path) {
     dump::Dump d;
     std::string err;
-    if (!dump::loadDump(path, d, err)) return fail(path + ": " + err);
+    if (!dump::loadDump(path, d, err)) return fail(err);
+    // A block shared by several records is printed once (output bounded by the push buffer).
+    std::map<std::pair<u32, u32>, size_t> printed;
     for (size_t i = 0; i < d.records.size(); ++i) {
         const dump::Record& r = d.records[i];
         if (r.type != dump::REGISTERS) {
@@ -67,6 +85,11 @@ int cmdDisasm(const std::string& path) {
             std::printf("; record %zu REGISTERS outside the push buffer\n", i);
             continue;
         }
+        auto [it, fresh] = printed.try_emplace({r.ptr, r.size}, i);
+        if (!fresh && r.size >= 64) {
+            std::printf("; record %zu REGISTERS: the %u words of record %zu again\n", i, r.size / 4, it->second);
+            continue;
+        }
         for (u32 k = 0; k < r.size / 4; ++k) {
             u32 w = readLE32(p + 4 * k);
             std::printf("%08x  %s\n", w, disassemble(w).c_str());
@@ -75,10 +98,17 @@ int cmdDisasm(const std::string& path) {
     return 0;
 }
 
+// Errors name the file once and say why (errno text): a full disk shows at the flush or close.
 bool writeFile(const std::string& path, const void* data, size_t size, std::string& err) {
-    std::ofstream f(path, std::ios::binary);
-    if (!f || !f.write(static_cast<const char*>(data), std::streamsize(size))) {
-        err = "cannot write " + path;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) {
+        err = "cannot write " + path + ": " + std::strerror(errno);
+        return false;
+    }
+    const bool ok = std::fwrite(data, 1, size, f) == size && std::fflush(f) == 0;
+    const int e = errno;
+    if (std::fclose(f) != 0 || !ok) {
+        err = "cannot write " + path + ": " + std::strerror(ok ? errno : e);
         return false;
     }
     return true;
@@ -91,7 +121,7 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
     std::vector<u8> vram;
     std::vector<u16> depth;
     if (!tools::renderDumpFile(path, opt, out, err, vramOut.empty() ? nullptr : &vram, depthOut.empty() ? nullptr : &depth))
-        return fail(path + ": " + err);
+        return fail(err);
     if (!out.replay.warning.empty()) std::fprintf(stderr, "ge2gl: warning: %s\n", out.replay.warning.c_str());
     if (!tools::writePng(outPng, out.frame, err)) return fail(err);
     if (!depthOut.empty()) {
@@ -110,6 +140,7 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
                     (unsigned long long)s.patches, (unsigned long long)s.vertices, (unsigned long long)s.transfers,
                     (unsigned long long)s.clutLoads, (unsigned long long)s.stateChanges, out.seconds);
         const dump::ReplayResult& r = out.replay;
+        std::printf("GE time: %.3f ms\n", getime::msFromCycles(r.geCycles));
         std::printf("replay timing: %s\nreplay syncs: %llu\nslab maps: %llu\nextra maps: %llu\nlist wraps: %llu\n",
                     dump::replayTimingName(opt.replayTiming), (unsigned long long)r.syncs,
                     (unsigned long long)r.slabMaps, (unsigned long long)r.extraMaps, (unsigned long long)r.listWraps);
@@ -220,7 +251,7 @@ int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& 
     for (const auto& path : files) {
         dump::Dump d;
         std::string err;
-        if (!dump::loadDump(path, d, err)) return fail(path + ": " + err);
+        if (!dump::loadDump(path, d, err)) return fail(err);
         std::vector<double> t;
         for (int i = 0; i < repeat; ++i) {
             tools::RenderOutput out;
@@ -250,8 +281,12 @@ int main(int argc, char** argv) {
                        "when the GE runs during replay: ppsspp (as PPSSPP's player: at its sync points; "
                        "dumps PPSSPP recorded) | eager (after every REGISTERS block; dumps from other tools)")
             ->check(CLI::IsMember({"ppsspp", "eager"}));
+        sc->add_option("--max-ge-ms", ropt.maxGeMs,
+                       "budget of emulated GE time for the replay in ms (0 = none); the rest of the frame is cut "
+                       "with a warning (default 166.7: 10 frames)")
+            ->check(CLI::Range(0.0, 1e7));
         sc->add_option("--backend", ropt.backend, "soft | gl | null")->check(CLI::IsMember({"soft", "gl", "null"}));
-        sc->add_option("--threads", ropt.threads, "software model threads (0 = all cores)");
+        sc->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
         sc->add_option("--context", ropt.glContext, "GL context: osmesa | egl");
         sc->add_flag("--gl-baseline", ropt.glBaseline, "GL: force the GL 3.3 baseline paths");
         sc->add_option("--dump-shaders", ropt.shaderDumpDir, "GL: write generated shaders to DIR");
@@ -273,7 +308,7 @@ int main(int argc, char** argv) {
     render->add_option("-o,--output", outPng, "output image, 480x272 (.png; other extensions through OpenImageIO)")->required();
     render->add_option("--depth-out", depthOut, "write u32 width, u32 height, u16 depth per pixel");
     render->add_option("--vram-out", vramOut, "write the 2 MiB of VRAM after the frame");
-    render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw");
+    render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
     render->add_flag("--stats", stats, "print counters");
     addBackendOpts(render);
 
@@ -284,10 +319,10 @@ int main(int argc, char** argv) {
     compare->add_option("DUMP", cmpFiles)->required();
     compare->add_option("--ref-dir", refDir, "folder with NAME-soft.png references");
     compare->add_option("--ref-backend", refBackend, "compare against another backend's render instead");
-    compare->add_option("--max-mse", maxMse, "non-zero exit when any dump exceeds this MSE");
+    compare->add_option("--max-mse", maxMse, "non-zero exit when any dump exceeds this MSE")->check(CLI::Range(0.0, 65025.0));
     compare->add_option("--json", jsonPath, "write results as JSON");
     compare->add_option("--diff-dir", diffDir, "write difference pictures here");
-    compare->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw");
+    compare->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
     addBackendOpts(compare);
 
     std::vector<std::string> benchFiles;

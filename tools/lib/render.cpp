@@ -62,6 +62,7 @@ bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out
     dump::ReplayOptions ro;
     ro.replayEnd = opt.replayEnd;
     ro.timing = opt.replayTiming;
+    ro.maxGeMs = opt.maxGeMs;
     if (!dump::replayDump(d, eng, ro, out.replay, err)) return false;
     dump::displayedFramebuffer(out.replay, eng.state(), out.displayAddr, out.displayStride, out.displayFormat);
     out.frame = readFrame(mem, out.displayAddr, out.displayStride, out.displayFormat);
@@ -85,7 +86,10 @@ bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOut
     auto t0 = std::chrono::steady_clock::now();
     dump::Dump d;
     if (!dump::loadDump(path, d, err)) return false;
-    if (!renderDump(d, opt, out, err, vramOut, depthOut)) return false;
+    if (!renderDump(d, opt, out, err, vramOut, depthOut)) {
+        err = path + ": " + err;  // load errors already name the file
+        return false;
+    }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return true;
 }

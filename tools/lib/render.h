@@ -14,6 +14,7 @@ struct RenderOptions {
     std::string backend = "soft";  // "soft" | "gl" | "null"
     u64 replayEnd = 0;             // stop after the Nth draw (0 = all)
     dump::ReplayTiming replayTiming = dump::ReplayTiming::Ppsspp;  // when the GE runs (player.h)
+    double maxGeMs = dump::ReplayOptions::kDefaultMaxGeMs;  // GE-time budget (player.h), 0 = none
     int threads = 0;               // software model threads (0 = all cores)
     std::string glContext = "osmesa";  // "osmesa" | "egl"
     bool glBaseline = false;       // GL: force the GL 3.3 baseline paths
