@@ -387,6 +387,49 @@ TEST(DumpLoad, DecompressionBombsStopAtTheHeadersSize) {
     EXPECT_NE(err.find("push buffer too large"), std::string::npos) << err;
 }
 
+// Resident set of this process in bytes (/proc/self/statm), 0 when unreadable.
+u64 residentBytes() {
+    std::ifstream f("/proc/self/statm");
+    u64 size = 0, resident = 0;
+    if (!(f >> size >> resident)) return 0;
+    return resident * u64(::sysconf(_SC_PAGESIZE));
+}
+
+// A zip whose directory claims a 200 MiB entry that holds a few bytes: refused as truncated after
+// reading what is there, without allocating the claimed size first (issue 12).
+TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
+    const fs::path zpath = tempPath("liar.zip");
+    const std::vector<u8> body = buildValid(6, "LIAR00001", kRecs, pushBytes20());
+    {
+        int zerr = 0;
+        zip_t* z = zip_open(zpath.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
+        ASSERT_NE(z, nullptr);
+        zip_source_t* src = zip_source_buffer(z, body.data(), body.size(), 0);
+        ASSERT_NE(src, nullptr);
+        const zip_int64_t idx = zip_file_add(z, "x.ppdmp", src, 0);
+        ASSERT_GE(idx, 0);
+        ASSERT_EQ(zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_STORE, 0), 0);
+        ASSERT_EQ(zip_close(z), 0);
+    }
+    std::vector<u8> zb = readFile(zpath);
+    // Uncompressed size: offset 22 of the local header, 24 of the central directory entry.
+    const u32 claim = 200u << 20;
+    int patched = 0;
+    for (size_t i = 0; i + 46 <= zb.size(); ++i) {
+        if (zb[i] == 'P' && zb[i + 1] == 'K' && zb[i + 2] == 3 && zb[i + 3] == 4) writeLE32(&zb[i + 22], claim), ++patched;
+        if (zb[i] == 'P' && zb[i + 1] == 'K' && zb[i + 2] == 1 && zb[i + 3] == 2) writeLE32(&zb[i + 24], claim), ++patched;
+    }
+    ASSERT_EQ(patched, 2);
+    const u64 before = residentBytes();
+    std::vector<u8> out;
+    std::string err;
+    EXPECT_FALSE(extractPpdmpFromZip(zb.data(), zb.size(), out, err));
+    EXPECT_FALSE(err.empty());
+    const u64 after = residentBytes();
+    if (before && after) EXPECT_LT(after, before + (64u << 20)) << "resident set grew by " << (after - before);
+    fs::remove(zpath);
+}
+
 TEST(DumpLoad, FilesAndZips) {
     Dump d;
     std::string err;

@@ -4,6 +4,7 @@
 
 #include "tests/test_util.h"
 
+#include <chrono>
 #include <filesystem>
 #include <random>
 
@@ -74,6 +75,35 @@ TEST(Replay, MissingInitIsAnError) {
     std::string err;
     EXPECT_FALSE(dump::replayDump(d, eng, {}, res, err));
     EXPECT_FALSE(err.empty());
+}
+
+// Issue 12: a first record INIT of size 0 whose pointer lies outside an (empty) push buffer made
+// the player memcpy from a null pointer; it is skipped with a warning.
+TEST(Replay, ZeroSizeInitOutsideThePushBufferIsSkipped) {
+    dump::Dump d;
+    d.records.push_back({dump::INIT, 0, 0x1000});
+    d.records.push_back({dump::REGISTERS, 0, 0x2000});
+    Memory mem(1u << 20);
+    GeEngine eng(mem);
+    dump::ReplayResult res;
+    std::string err;
+    EXPECT_TRUE(dump::replayDump(d, eng, {}, res, err)) << err;
+    EXPECT_NE(res.warning.find("outside the push buffer"), std::string::npos) << res.warning;
+}
+
+// One 4 MiB REGISTERS block behind 200,000 records (issue 12: `info` took minutes): summarize
+// scans a shared block once and multiplies.
+TEST(Replay, SummarizeCountsASharedBlockOnce) {
+    dump::Dump d;
+    d.pushbuf.assign(4u << 20, 0);
+    for (size_t i = 0; i < d.pushbuf.size(); i += 4) d.pushbuf[i + 3] = u8(GE_CMD_PRIM);
+    d.records.push_back({dump::INIT, 0, 0});
+    for (int i = 0; i < 200000; ++i) d.records.push_back({dump::REGISTERS, 4u << 20, 0});
+    const auto t0 = std::chrono::steady_clock::now();
+    const dump::DumpSummary s = dump::summarize(d);
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+    EXPECT_EQ(s.commands, 200000ull << 20);
+    EXPECT_EQ(s.prims, 200000ull << 20);
 }
 
 TEST(Replay, UnknownRecordTypeIsAnError) {
