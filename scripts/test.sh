@@ -9,6 +9,8 @@ jobs=$(nproc 2>/dev/null || echo 2)
 bash "$root/scripts/build.sh" "$root/build"
 echo "== tests (Release) =="
 (cd "$root/build" && ctest --output-on-failure -j"$jobs" --timeout 1200)
+echo "== hostile dumps: clean exit within 10 s and 1 GiB, both backends =="
+bash "$root/scripts/check_dumps.sh" "$root/build"
 if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
   echo "== tests (ASan + UBSan) =="
   bash "$root/scripts/build.sh" "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DGE2GL_SANITIZE=ON -DGE2GL_BUILD_BENCH=OFF

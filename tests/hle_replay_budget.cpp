@@ -10,28 +10,13 @@
 #include "hle/ge_time.h"
 #include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
+#include "tests/hostile_dumps.h"
 
 using namespace ge;
 
 namespace {
 
-u32 word(u8 op, u32 arg) { return (u32(op) << 24) | (arg & 0xFFFFFF); }
-
-// Where the player's list buffer lies (player.cpp: 256 KiB at the top of user memory), so that a
-// hostile block can jump into it.
-constexpr u32 kListBuf = 0x0A000000 - (256u << 10);
-
-dump::DumpWriter startDump() {
-    dump::DumpWriter w;
-    GeState st;
-    st.reset();
-    for (int op = 0; op < 256; ++op) st.regs[op] = u32(op) << 24;
-    u32 ctx[512];
-    st.saveContext(ctx);
-    w.init(ctx);
-    w.display(0x04000000, 512, GE_FORMAT_8888);
-    return w;
-}
+using namespace hostile;
 
 struct Replay {
     Memory mem;
@@ -56,27 +41,8 @@ struct Replay {
 // catch-up runs until its command budget, tens of thousands of full-screen rectangles, and the
 // next catch-up starts over — minutes of drawing without a budget in GE time.
 TEST(ReplayBudget, RectangleLoopStopsAtTheBudget) {
-    dump::DumpWriter w = startDump();
-    ListBuilder s;
-    s.drawBuffer(GE_FORMAT_8888, 0, 512);
-    s.scissor(0, 0, 480, 272);
-    s.region(0, 0, 480, 272);
-    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-    s.setVertexType(vtype);
-    w.registers(s.words());
-    BuildVertex v[2];
-    v[1].x = 480;
-    v[1].y = 272;
-    const auto bytes = packVertices(vtype, v, 2);
-    w.vertices(bytes.data(), u32(bytes.size()));
-    // List buffer: NOP, the state block, then this block after the BASE + VADR that VERTICES
-    // queued: the loop starts at those (a draw advances the vertex pointer, §4.6).
-    const u32 loopStart = kListBuf + 4 + u32(4 * s.words().size());
-    w.registers({word(GE_CMD_PRIM, (GE_PRIM_RECTANGLES << 16) | 2), word(GE_CMD_BASE, (loopStart >> 8) & 0xFF0000),
-                 word(GE_CMD_JUMP, loopStart & 0xFFFFFF)});
-    w.display(0x04000000, 512, GE_FORMAT_8888);
     constexpr double kMs = 10.0;
-    Replay r(w.dump(), kMs);
+    Replay r(rectangleLoop(), kMs);
     EXPECT_TRUE(r.res.timeLimitHit);
     EXPECT_NE(r.res.warning.find("GE time budget"), std::string::npos) << r.res.warning;
     // 480·272 pixels at 1/3 cycle + 2 vertices at 20 + 3 commands at 2 a loop.
@@ -92,15 +58,8 @@ TEST(ReplayBudget, RectangleLoopStopsAtTheBudget) {
 // A list that jumps to itself, in many records: each catch-up runs out of commands and the next
 // record's catch-up starts the loop again; the budget counts across all of them. Null backend.
 TEST(ReplayBudget, SelfJumpStopsAtTheBudget) {
-    dump::DumpWriter w = startDump();
-    for (u32 k = 0; k < 200; ++k) {
-        // Block k lies after the NOP and k blocks of two words; its JUMP word jumps to itself.
-        const u32 self = kListBuf + 4 + 8 * k + 4;
-        w.registers({word(GE_CMD_BASE, (self >> 8) & 0xFF0000), word(GE_CMD_JUMP, self & 0xFFFFFF)});
-        w.display(0x04000000, 512, GE_FORMAT_8888);  // a catch-up: runs out of commands, restarts
-    }
     constexpr double kMs = 5.0;
-    Replay r(w.dump(), kMs, false);
+    Replay r(selfJumps(), kMs, false);
     EXPECT_TRUE(r.res.timeLimitHit);
         // List starts (60 cycles each) take a little of the budget too.
     const double want = double(getime::cyclesFromMs(kMs) / getime::kPerCommand);
@@ -110,13 +69,7 @@ TEST(ReplayBudget, SelfJumpStopsAtTheBudget) {
 // One 2 MiB FRAMEBUF payload behind thousands of records: the player would copy 2 MiB into
 // VRAM for each; its copies are charged (hle/ge_time.h hostCopyCost) and the replay stops.
 TEST(ReplayBudget, SharedPayloadCopiesStopAtTheBudget) {
-    dump::DumpWriter w = startDump();
-    std::vector<u8> vram(2u << 20, 0x5A);
-    w.framebufTexture(0, 0x04000000, 512, 0, vram.data(), u32(vram.size()));
-    dump::Dump d = w.dump();
-    const dump::Record fb = d.records.back();
-    for (int i = 0; i < 20000; ++i) d.records.push_back(fb);  // all sharing the one payload
-    Replay r(d, dump::ReplayOptions::kDefaultMaxGeMs, false);
+    Replay r(sharedFramebufPayload(), dump::ReplayOptions::kDefaultMaxGeMs, false);
     EXPECT_TRUE(r.res.timeLimitHit);
     const u64 perRecord = getime::hostCopyCost(2u << 20);
     EXPECT_LE(r.res.records, getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs) / perRecord + 3);
@@ -144,32 +97,7 @@ TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
 TEST(ReplayBudget, HugeDrawsAreCutInsideTheDraw) {
     for (bool patch : {false, true}) {
         SCOPED_TRACE(patch ? "Bezier patch at the tessellation cap" : "57,300-vertex fan");
-        dump::DumpWriter w = startDump();
-        ListBuilder s;
-        s.drawBuffer(GE_FORMAT_8888, 0, 512);
-        s.scissor(0, 0, 480, 272);
-        s.region(0, 0, 480, 272);
-        constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-        s.setVertexType(vtype);
-        if (patch) s.patchDivide(127, 127);
-        w.registers(s.words());
-        u32 word0;
-        std::vector<BuildVertex> v;
-        if (patch) {
-            v.resize(100 * 100);  // 33 × 33 patches of 128 × 128 vertices: capped at 2^21
-            for (size_t i = 0; i < v.size(); ++i) v[i].x = float(i % 100), v[i].y = float(i / 100);
-            word0 = word(GE_CMD_BEZIER, (100 << 8) | 100);
-        } else {
-            v.resize(57300);  // centre, then a zigzag between two far corners: every triangle large
-            v[0].x = 240, v[0].y = 136;
-            for (size_t i = 1; i < v.size(); ++i) v[i].x = (i & 1) ? 0 : 479, v[i].y = (i & 2) ? 0 : 271;
-            word0 = word(GE_CMD_PRIM, (GE_PRIM_TRIANGLE_FAN << 16) | 57300);
-        }
-        const auto bytes = packVertices(vtype, v.data(), u32(v.size()));
-        w.vertices(bytes.data(), u32(bytes.size()));
-        w.registers({word0});
-        w.display(0x04000000, 512, GE_FORMAT_8888);
-        Replay r(w.dump());
+        Replay r(patch ? patchAtTheCap() : hugeFan());
         EXPECT_TRUE(r.res.timeLimitHit) << r.res.warning;
         const auto* soft = dynamic_cast<const soft::SoftRenderer*>(r.r.get());
         ASSERT_NE(soft, nullptr);
