@@ -426,7 +426,9 @@ TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
     EXPECT_FALSE(extractPpdmpFromZip(zb.data(), zb.size(), out, err));
     EXPECT_FALSE(err.empty());
     const u64 after = residentBytes();
-    if (before && after) EXPECT_LT(after, before + (64u << 20)) << "resident set grew by " << (after - before);
+    if (before && after) {
+        EXPECT_LT(after, before + (64u << 20)) << "resident set grew by " << (after - before);
+    }
     fs::remove(zpath);
 }
 
