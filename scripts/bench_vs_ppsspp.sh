@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Whole-process speed of ge2gl against PPSSPP's headless build on the same dumps (issue 10), as
+# paired runs: for each dump and mode, N rounds of "ge2gl, PPSSPP" in alternating order, the ratio
+# of each pair's wall times, and the median of those ratios (per dump, over all dumps, and over the
+# five dumps PPSSPP takes longest on). Peak RSS of each side too.
+#
+#   PPSSPP_HEADLESS=/path/to/PPSSPPHeadless scripts/bench_vs_ppsspp.sh [BUILD_DIR] [ROUNDS] [DUMP...]
+#
+# Modes: soft (ge2gl --backend soft vs PPSSPP --graphics=software) and gl (ge2gl --backend gl, exact
+# mode on OSMesa/llvmpipe, vs PPSSPP --graphics=gles on Mesa's software GL). Dumps default to
+# ../shared/frametests/dumps. PPSSPP is not a dependency: without PPSSPP_HEADLESS the script says
+# so and exits 0. How to build PPSSPPHeadless: docs/benchmarks.md.
+set -uo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${1:-$root/build}
+rounds=${2:-2}
+shift $(( $# >= 2 ? 2 : $# ))
+if [ -z "${PPSSPP_HEADLESS:-}" ] || [ ! -x "$PPSSPP_HEADLESS" ]; then
+  echo "bench_vs_ppsspp: set PPSSPP_HEADLESS to a PPSSPPHeadless binary (docs/benchmarks.md); nothing measured"
+  exit 0
+fi
+dumps=("$@")
+[ ${#dumps[@]} -gt 0 ] || dumps=("$root"/../shared/frametests/dumps/*)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+# One timed run: prints "seconds maxrss_kib".
+timed() {
+  /usr/bin/time -f "%e %M" -o "$tmp/t" "$@" >/dev/null 2>&1
+  tail -1 "$tmp/t"
+}
+
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+for mode in soft gl; do
+  if [ "$mode" = soft ]; then ours=(--backend soft); theirs=(--graphics=software); else ours=(--backend gl); theirs=(--graphics=gles); fi
+  : > "$tmp/$mode.rows"
+  printf "== %s ==\n%-58s %9s %9s %7s %8s %8s\n" "$mode" dump "ge2gl s" "ppsspp s" ratio "ge2gl MiB" "ppsspp MiB"
+  for d in "${dumps[@]}"; do
+    : > "$tmp/ratios"
+    for ((r = 0; r < rounds; ++r)); do
+      if ((r % 2 == 0)); then
+        read -r a am < <(timed "$build/ge2gl" render "$d" "${ours[@]}" -o "$tmp/o.png")
+        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" -l "${theirs[@]}" --screenshot-save="$tmp/p.bmp" "$d")
+      else
+        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" -l "${theirs[@]}" --screenshot-save="$tmp/p.bmp" "$d")
+        read -r a am < <(timed "$build/ge2gl" render "$d" "${ours[@]}" -o "$tmp/o.png")
+      fi
+      awk -v a="$a" -v b="$b" 'BEGIN { if (b > 0) printf "%.4f\n", a / b }' >> "$tmp/ratios"
+    done
+    ratio=$(median < "$tmp/ratios")
+    printf "%-58s %9s %9s %7s %8d %8d\n" "$(basename "$d" | cut -c1-58)" "$a" "$b" "$ratio" $((am / 1024)) $((bm / 1024))
+    echo "$ratio $b" >> "$tmp/$mode.rows"
+  done
+  all=$(awk '{ print $1 }' "$tmp/$mode.rows" | median)
+  heavy=$(sort -k2 -gr "$tmp/$mode.rows" | head -5 | awk '{ print $1 }' | median)
+  echo "$mode: median of pair ratios (ge2gl / PPSSPP) over ${#dumps[@]} dumps: $all; over the 5 heaviest for PPSSPP: $heavy"
+done
