@@ -43,6 +43,13 @@ shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
     return c;
 }
 
+// True when the depth buffer rows a draw needs share bytes with colour target t (linear VRAM).
+bool depthOverlapsColor(const Target& t, u32 depthAddr, u32 depthStride, int rows) {
+    const u64 begin = vramLinear(depthAddr);
+    const u64 end = begin + u64(std::clamp(rows, 1, kTargetSize)) * depthStride * 2;
+    return begin < t.end() && end > t.addr;
+}
+
 // Everything a batch's GL draw depends on. Compared byte-wise: always memset before filling.
 struct Setup {
     shadergen::VsKey vs;
@@ -446,7 +453,14 @@ private:
             return;
         }
         Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
-        Target* dt = s.useDepth ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1) : nullptr;
+        // A depth buffer sharing bytes with the colour target is not used: taking its target would
+        // claim those bytes and free the colour target this draw binds (targets never alias,
+        // framebuffer_manager.h; found by fuzz_replay_gl). PPSSPP likewise drops a depth buffer at
+        // the colour buffer's address (FramebufferManagerCommon: "the game doesn't care about Z").
+        const bool depthOnColor = ct && s.useDepth && s.depthStride &&
+                                  depthOverlapsColor(*ct, s.depthAddr, s.depthStride, s.scissor[3] + 1);
+        Target* dt = s.useDepth && !depthOnColor ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1)
+                                                 : nullptr;
         if (!ct) {
             geo_.clear();
             return;
