@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages ge2gl needs, only those that are missing. Run as root (or with sudo).
 set -euo pipefail
 pkgs=(cmake ninja-build g++ pkg-config libosmesa6-dev libegl-dev libgl-dev libglm-dev libgtest-dev libgmock-dev
-      libpng-dev libopenimageio-dev libzstd-dev libsnappy-dev libzip-dev libxxhash-dev libcli11-dev libbenchmark-dev zlib1g-dev)
+      libpng-dev libopenimageio-dev libzstd-dev libsnappy-dev libzip-dev libxxhash-dev libcli11-dev libbenchmark-dev zlib1g-dev
+      clang libclang-rt-14-dev)  # clang + its libFuzzer/sanitizer runtimes: scripts/fuzz.sh
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

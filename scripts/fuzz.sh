@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer harnesses (clang, ASan + UBSan + float-cast-overflow; tests/fuzz/) in
+# build-fuzz/, makes their seed corpora from the project's dumps (and ../shared/frametests when
+# present), and runs each harness for SECONDS. docs/fuzzing.md.
+#
+#   bash scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
+#
+# Harnesses: ppdmp_load replay_soft replay_gl list texture vertex spline api (default: all).
+# Prints per harness: executions, exec/s, coverage (cov/ft of libFuzzer's last status line), corpus
+# size (inputs kept, in build-fuzz/corpus/NAME, seeds not counted) and findings; exits non-zero
+# when any harness finds a crash, leak, timeout or out-of-memory, naming the reproducer (run
+# `build-fuzz/fuzz/fuzz_NAME FILE` to replay it).
+# Environment: GE2GL_FUZZ_BUILD (build dir, default build-fuzz), GE2GL_FUZZ_JOBS (ninja -j,
+# default: all cores), GE2GL_FUZZ_ARGS (extra libFuzzer flags, e.g. "-runs=1000000").
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+secs=${1:-60}
+shift || true
+all=(ppdmp_load replay_soft replay_gl list texture vertex spline api)
+harnesses=("$@")
+((${#harnesses[@]})) || harnesses=("${all[@]}")
+build=${GE2GL_FUZZ_BUILD:-$root/build-fuzz}
+jobs=${GE2GL_FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}
+
+for h in "${harnesses[@]}"; do
+  [[ " ${all[*]} " == *" $h "* ]] || { echo "fuzz.sh: unknown harness '$h' (${all[*]})" >&2; exit 2; }
+done
+
+echo "== fuzz: building the harnesses in $build =="
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DGE2GL_FUZZ=ON \
+  -DGE2GL_BUILD_TESTS=OFF -DGE2GL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" >/dev/null
+nice -n 10 ninja -C "$build" -j"$jobs" ge2gl_fuzzers >/dev/null
+
+# Seeds: remade when a dump or the seed maker is newer than the stamp.
+seeds=$build/seeds
+shopt -s nullglob
+dumps=("$root"/dumps/*.ppdmp "$root"/../shared/frametests/dumps/*.zip)
+stamp=$seeds/.stamp
+remake=0
+[ -f "$stamp" ] || remake=1
+for f in "$build/fuzz/fuzz_seeds" "${dumps[@]}"; do [ "$remake" = 1 ] || [ "$f" -nt "$stamp" ] && remake=1; done
+if [ "$remake" = 1 ]; then
+  rm -rf "$seeds"
+  mkdir -p "$seeds"
+  "$build/fuzz/fuzz_seeds" "$seeds" "${dumps[@]}"
+  touch "$stamp"
+fi
+dicts=$build/dict
+mkdir -p "$dicts"
+cat "$root/tests/fuzz/ppdmp.dict" "$root/tests/fuzz/ge_cmds.dict" >"$dicts/replay.dict"
+
+# Per harness: seed directory, dictionary, largest input.
+seedsOf() { case $1 in ppdmp_load) echo load ;; replay_*) echo replay ;; *) echo "$1" ;; esac; }
+dictOf() {
+  case $1 in
+  ppdmp_load) echo "$root/tests/fuzz/ppdmp.dict" ;;
+  replay_*) echo "$dicts/replay.dict" ;;
+  *) echo "$root/tests/fuzz/ge_cmds.dict" ;;
+  esac
+}
+maxLenOf() { case $1 in ppdmp_load) echo 1048576 ;; replay_* | texture) echo 262144 ;; *) echo 65536 ;; esac; }
+
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+found=0
+summary=()
+for h in "${harnesses[@]}"; do
+  bin=$build/fuzz/fuzz_$h
+  if [ ! -x "$bin" ]; then
+    summary+=("$(printf '%-12s not built (GL or the plugin API is off in this build)' "$h")")
+    continue
+  fi
+  corpus=$build/corpus/$h
+  artifacts=$build/findings/$h
+  log=$build/logs/$h.log
+  mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
+  echo "== fuzz: $h for ${secs}s =="
+  rc=0
+  # shellcheck disable=SC2086
+  nice -n 10 "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -max_len="$(maxLenOf "$h")" \
+    -dict="$(dictOf "$h")" -artifact_prefix="$artifacts/" -print_final_stats=1 -print_pcs=0 \
+    ${GE2GL_FUZZ_ARGS:-} "$corpus" "$seeds/$(seedsOf "$h")" >"$log" 2>&1 || rc=$?
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
+  last=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
+  cov=$(sed -n 's/.* cov: \([0-9]*\).*/\1/p' <<<"$last")
+  ft=$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last")
+  kept=$(find "$corpus" -type f | wc -l)
+  repro=$(grep -hoE '(Test unit written to|artifact_prefix.*; Test unit written to) [^ ]+' "$log" | awk '{print $NF}' | tail -1 || true)
+  if [ "$rc" != 0 ] || [ -n "$repro" ]; then
+    found=1
+    kind=$(grep -oE 'ERROR: (AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|libFuzzer)[^:]*: [a-z-]+|runtime error|deadly signal|timeout|out-of-memory' "$log" | head -1 || true)
+    findings="FOUND ${kind:-exit code $rc}: ${repro:-see $log}"
+  else
+    findings="none"
+  fi
+  summary+=("$(printf '%-12s executions %-9s exec/s %-6s cov %-6s ft %-7s corpus %-6s findings: %s' \
+    "$h" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$kept" "$findings")")
+done
+echo "== fuzz summary (${secs}s per harness; logs in $build/logs) =="
+printf '%s\n' "${summary[@]}"
+if [ "$found" != 0 ]; then
+  echo "fuzz: findings (reproduce with $build/fuzz/fuzz_NAME FILE)" >&2
+  exit 1
+fi

@@ -1,0 +1,61 @@
+// Harness (c): dump replay with the GL translator ("GL exact") on an OSMesa context. Input as for
+// fuzz_replay_soft (a .ppdmp, a zip, or the open form of fuzz_common.h).
+//
+// Creating a context and compiling the first programs costs far more than a replay, so one
+// renderer serves the whole process: before each input its memory is cleared and the renderer
+// told that all of VRAM and RAM changed (render targets re-read the zeros, cached textures are
+// dropped), which leaves it equivalent to a fresh one for that input (generated programs are a
+// pure function of their keys). Without a GL context every input is a no-op (said once).
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "hle/dump/player.h"
+#include "hle/dump/ppdmp.h"
+#include "tests/fuzz/fuzz_common.h"
+#include "translator/gl_renderer.h"
+
+using namespace ge;
+
+namespace {
+
+Memory* gMem = nullptr;
+Renderer* gGl = nullptr;
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    // llvmpipe rasterises on the calling thread: one core per fuzzing job, reproducible timing.
+    setenv("LP_NUM_THREADS", "0", 0);
+    gMem = new Memory();
+    gl::GlOptions go;
+    go.context = gl::ContextKind::OSMesa;
+    std::string err;
+    gGl = gl::createGlRenderer(*gMem, go, err).release();
+    if (!gGl) std::fprintf(stderr, "fuzz_replay_gl: no GL context (%s): every input is skipped\n", err.c_str());
+    return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size > fuzz::kMaxInput) return -1;
+    if (!gGl) return 0;
+    dump::Dump d;
+    std::string err;
+    if (!fuzz::loadFuzzDump(data, size, d, err)) return 0;
+    gMem->clear();
+    gGl->memoryWritten(Memory::kVramBase, Memory::kVramSize);
+    gGl->memoryWritten(Memory::kRamBase, gMem->ramSize());
+    fuzz::BoundedRenderer r(*gGl);
+    r.reset();
+    GeEngine eng(*gMem, &r);
+    fuzz::BoundedTarget target(eng, fuzz::Caps{}.commands);
+    dump::ReplayOptions opt;
+    if (!d.records.empty() && (d.records.size() & 3) == 3) opt.timing = dump::ReplayTiming::Eager;
+    opt.maxGeMs = fuzz::kMaxGeMs;
+    dump::ReplayResult res;
+    dump::replayDump(d, target, opt, res, err);
+    gGl->flushToMemory();
+    return 0;
+}
