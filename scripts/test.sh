@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Set up, build and run the whole test suite, then the same tests under ASan+UBSan, then the
-# software model's tests and every dump with 4 band threads under ThreadSanitizer.
-# GE2GL_SKIP_SANITIZE=1 skips the sanitizer passes (for quick local runs).
+# software model's tests and every dump with 4 band threads under ThreadSanitizer, then every
+# libFuzzer harness for 30 s (scripts/fuzz.sh; fails on any finding).
+# GE2GL_SKIP_SANITIZE=1 skips the sanitizer passes and GE2GL_SKIP_FUZZ=1 the fuzzing (quick local runs).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 bash "$root/scripts/setup.sh"
@@ -27,4 +28,8 @@ if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
   for d in "$root"/dumps/*.ppdmp "$root"/../shared/frametests/dumps/*.zip; do
     "$root/build-tsan/ge2gl" render "$d" --backend soft --threads 4 -o "$root/build-tsan/tsan.png" >/dev/null
   done
+fi
+if [ "${GE2GL_SKIP_FUZZ:-0}" != 1 ]; then
+  echo "== fuzzing: every libFuzzer harness for 30 s (docs/fuzzing.md) =="
+  bash "$root/scripts/fuzz.sh" 30
 fi
