@@ -460,7 +460,13 @@ void GeEngine::doClutLoad(u32 arg) {
     renderer_->syncMemoryForRead(addr, bytes);
     const u32 avail = mem_.validSize(addr, bytes);
     if (avail) std::memcpy(state_.clut, mem_.ptr(addr, avail), avail);
-    if (avail < bytes) mem_.noteBadAccess(addr + avail);
+    if (avail < bytes) {
+        // Bytes outside valid memory load as zero (a PSP: pspautotests gpu/clut/address, a load
+        // from just past VRAM's mirrors reads colour 0, tests/conformance/clut_address.cpp; the
+        // reference renderer zero-fills likewise, SoftGpu::Execute_LoadClut).
+        std::memset(state_.clut + avail, 0, bytes - avail);
+        mem_.noteBadAccess(addr + avail);
+    }
     state_.clutLoadedBytes = bytes;
     dirty_ |= DIRTY_CLUT;
     ++stats_.clutLoads;

@@ -58,6 +58,13 @@ enum GePrimType : u8 {
     GE_PRIM_POINTS = 0, GE_PRIM_LINES, GE_PRIM_LINE_STRIP, GE_PRIM_TRIANGLES, GE_PRIM_TRIANGLE_STRIP,
     GE_PRIM_TRIANGLE_FAN, GE_PRIM_RECTANGLES, GE_PRIM_KEEP_PREVIOUS
 };
+// Comparison functions of the alpha, stencil and depth tests (CMD_ATEST, CMD_STEST, CMD_ZTEST;
+// ge-reference.md §3.10), stencil operations (CMD_SOP) and blend equations (CMD_BLEND bits 8–10).
+// Codes the software model's pixel pipeline and both backends' reference rules
+// (geometry/reference_rules.h) read.
+enum GeCompareFunc : u8 { CMP_NEVER = 0, CMP_ALWAYS, CMP_EQUAL, CMP_NOTEQUAL, CMP_LESS, CMP_LEQUAL, CMP_GREATER, CMP_GEQUAL };
+enum GeStencilOp : u8 { SOP_KEEP = 0, SOP_ZERO, SOP_REPLACE, SOP_INVERT, SOP_INCR, SOP_DECR };
+enum GeBlendEq : u8 { BLEQ_ADD = 0, BLEQ_SUB, BLEQ_REVSUB, BLEQ_MIN, BLEQ_MAX, BLEQ_ABS };
 
 struct GeState {
     // Command register file: the last word executed for each opcode, opcode included.

@@ -6,6 +6,7 @@
 // backend re-derives only what changed. Backends read and write guest memory only through the
 // Memory they were constructed with; the emulated VRAM is the source of truth.
 #pragma once
+#include <utility>
 #include <vector>
 
 #include "hle/ge_state.h"
@@ -97,6 +98,17 @@ public:
     virtual void memoryWritten(u32 /*addr*/, u32 /*size*/) {}
     // Make emulated VRAM hold every pixel drawn so far (before the host reads a frame).
     virtual void flushToMemory() {}
+    // The host may have written guest memory without saying where (plugin API: a list was queued,
+    // continued or its stall moved). Cached textures are checked against their source bytes when
+    // next used (content hash, as PPSSPP's texture cache does); with `frameBuffers`, cached frame
+    // and depth buffers against VRAM too.
+    virtual void hostMayHaveWritten(bool /*frameBuffers*/) {}
+    // Byte ranges drawn into since they were last written to guest memory and not reported by an
+    // earlier call (backends that draw elsewhere than guest memory; plugin API lazy write-back).
+    virtual void takeDirtyRanges(std::vector<std::pair<u32, u32>>& /*out*/) {}
+    // True when the backend may hold pixels of [addr, addr+size) newer than guest memory (a read
+    // of guest memory needs syncMemoryForRead first). Answered without touching GL.
+    virtual bool holdsNewerThanMemory(u32 /*addr*/, u32 /*size*/) const { return false; }
     // Cumulative upper bound of the pixels the primitives handed to the backend can write (their
     // clipped bounding boxes), for the GE-time estimate (hle/ge_time.h). 0 for a backend that
     // does not rasterise.

@@ -547,6 +547,16 @@ SceRunResult SceGe::peekRun() const {
 
 SceRunResult SceGe::run(u64 maxCommands) { return runInternal(maxCommands, -1); }
 
+SceRunResult SceGe::runUntil(u64 maxCommands, s32 stopAfterId) { return runInternal(maxCommands, slotOf(stopAfterId)); }
+
+void SceGe::requestYield() {
+    if (!inRun_) return;  // between runs there is nothing to stop
+    yield_ = true;
+    // Inside the engine: stop after the current command (run() resumes a list it finds paused
+    // this way, as it does after a pause requested from a callback that was then continued).
+    if (inEngine_) engine_.requestPause();
+}
+
 SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     if (inRun_) {
         message_ = "run() cannot be called from inside a GE callback";
@@ -569,7 +579,9 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
         if (engine_.status() == RunStatus::Paused) engine_.resume();
         finishPending_ = false;
         const u64 before = engine_.stats().commands;
+        inEngine_ = true;
         const RunStatus s = engine_.run(maxCommands - used);
+        inEngine_ = false;
         used += engine_.stats().commands - before;
         if (s == RunStatus::Completed || s == RunStatus::Error) {
             // An error drops the list and the queue moves on (PPSSPP); the error callback has
@@ -584,7 +596,9 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
                        fmt("0x%08x stays unfinished (uOFW behaviour); sceGeBreak(1) resets the queue", u32(idOf(i)));
             if (listener_) listener_->onError(idOf(i), pc, message_);
         }
+        if (yield_) break;
     }
+    yield_ = false;
     inRun_ = false;
     SceRunResult r = peekRun();
     r.commands = used;

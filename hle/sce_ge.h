@@ -160,10 +160,16 @@ public:
     // ---- Execution ----
     // Runs queued lists in order for at most `maxCommands` commands.
     SceRunResult run(u64 maxCommands);
+    // The same, stopping right after list `stopAfterId` completes (a wait for that list).
+    SceRunResult runUntil(u64 maxCommands, s32 stopAfterId);
     // Current position without running.
     SceRunResult peekRun() const;
     // True when run() would execute at least one command.
     bool canProgress() const;
+    // Makes the current run() return after the command being executed (or at once between
+    // commands), with the lists' states as they are: the plugin API stops there to hand an
+    // interrupt to a host that holds interrupts until it acknowledges them. The next run() goes on.
+    void requestYield();
     // Peek state of a list, or an error (for tests and the API's run info).
     SceListState listState(s32 id) const;
 
@@ -219,6 +225,7 @@ private:
     bool inRun_ = false;
     bool brokeInCallback_ = false;
     bool finishPending_ = false;
+    bool yield_ = false, inEngine_ = false;
     u32 finishArg_ = 0, finishPc_ = 0;
     u32 sdkVersion_ = kDefaultSdkVersion;
     u64 waitBudget_ = u64(1) << 26;

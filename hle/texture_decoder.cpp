@@ -139,6 +139,8 @@ void dxtColorTexels(const u8* block, bool dxt1, u32 out[16]) {
 
 }  // namespace
 
+void maskedPalette(const GeState& st, int level, u32 pal[256]) { buildMaskedPalette(st, level, pal); }
+
 void decodeDxt1Block(const u8* block, u32 out[16]) { dxtColorTexels(block, true, out); }
 
 void decodeDxt3Block(const u8* block, u32 out[16]) {

@@ -23,6 +23,9 @@ u32 textureFormatBits(GeTexFormat fmt);
 // CLUT lookup of a raw texel index (ref §6.4): ((t>>SFT)&MSK)|(CSA<<4), 16-bit palettes &0x1FF,
 // 32-bit &0xFF, multi-CLUT per-level offset for CLUT4, palette from st.clut in CPF format.
 u32 clutLookup(const GeState& st, u32 rawIndex, int level);
+// The palette resolved for every masked index m = (t >> SFT) & MSK (0–255): pal[m] is what
+// clutLookup gives for any raw index with that masked value (the GL path's palette texture).
+void maskedPalette(const GeState& st, int level, u32 pal[256]);
 
 // Decodes a whole level to RGBA8888 (R in bits 7..0), width*height texels, row-major, all 11
 // formats, swizzled storage (TMODE bit 0), DXT1/3/5 as ref §6.5, sizes > 512 saturated as §6.2.

@@ -63,6 +63,8 @@ std::string describe(const FsKey& k) {
         if (k.texMip) f += k.texMip == 2 ? ",mip:lin" : ",mip:near";
         if (k.texMip || k.texMinLinear != k.texMagLinear) f += ",lod" + std::to_string(k.texLodMode);
         addKv(s, "filt", f);
+        if (k.texTarget)
+            addKv(s, "rtt", std::to_string(k.texTarget - 1) + "as" + std::to_string(k.texFormat));
         if (k.texClampU || k.texClampV)
             addKv(s, "clamp", std::string(k.texClampU ? "u" : "") + (k.texClampV ? "v" : ""));
     }

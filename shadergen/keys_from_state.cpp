@@ -1,6 +1,6 @@
 // State → keys, fixed-function decision and uniform values (see keys_from_state.h).
 #include "shadergen/keys_from_state.h"
-#include "softmodel/blend.h"
+#include "geometry/reference_rules.h"
 
 #include <xxhash.h>
 
@@ -54,6 +54,8 @@ void canonicalize(FsKey& k) {
     } else {
         k.clearColor = k.clearAlpha = k.clearDepth = 0;
     }
+    if (!k.tex) k.texTarget = 0;
+    if (!k.texTarget) k.texFormat = 0;
     if (!k.tex) {
         k.texFunc = k.texAlpha = k.texDouble = 0;
         k.texMagLinear = k.texMinLinear = k.texMip = k.texLodMode = 0;
@@ -123,10 +125,10 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
             k.texClampV = st.TWRAP_vclamp() ? 1 : 0;
         }
         k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ref §3.9)
-        if (st.ATE_on() && st.ATEST_func() != 1 && !soft::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull))
+        if (st.ATE_on() && st.ATEST_func() != 1 && !geo::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull))
             k.alphaTest = u8(st.ATEST_func() + 1);
-        // The reference's implicit alpha != 0 test (softmodel/blend.h): code 9.
-        if (soft::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
+        // The reference's implicit alpha != 0 test (geometry/reference_rules.h): code 9.
+        if (geo::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
         if (st.CTE_on() && st.CTEST_func() != 1) k.colorTest = u8(st.CTEST_func() + 1);
         if (st.STE_on() && fmt != GE_FORMAT_565) {
             // 5650 has no stencil bits: the stored value reads as 0 and is never written, but

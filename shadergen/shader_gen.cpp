@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "hle/ge_state.h"  // format enumerations only
+
 namespace ge::shadergen {
 namespace {
 
@@ -99,7 +101,7 @@ std::string zExpr() {
     return "depthAt(" + recI(tri::kIZ) + ", " + recI(tri::kIZ + 1) + ", " + recI(tri::kIZ + 2) + ")";
 }
 
-// Helper functions of the exact path. Each mirrors softmodel/raster.cpp (rasterTriangle,
+// Helper functions of the exact path. Each mirrors geometry/raster.cpp (rasterTriangle,
 // rasterRectangle): `precise` keeps every float/double operation separately rounded, in the
 // software model's order, with no fused multiply-adds. Divisions the software model does in
 // float are done in double and rounded once to float, which gives the correctly rounded float
@@ -250,6 +252,83 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
 
 }  // namespace
 
+// Texel fetch from a render target sampled in place (FsKey::texTarget, hardware mode). u, v count
+// the target's texels (u_texScale per PSP texel); wrap and clamp work on the scaled sizes (ref
+// §8.10: clamp to min(w, 512) − 1, repeat modulo the power-of-two size). The origin (x, y) of the
+// texture in the target is u_texLevels[0].wx. The stored pixel (bit-replicated channels of the
+// frame-buffer format) is what a texture of the same format decodes to; another 16-bit format
+// re-encodes the buffer's 16 bits and decodes them as the texture's format (ge-reference §6.3).
+static void emitTargetTexel(std::string& s, const FsKey& k) {
+    const int fb = k.texTarget - 1;
+    s += "ivec4 texel(int lv, int u, int v) {\n"
+         "  ivec4 L = u_texLevels[lv];\n"
+         "  int W = min(L.y, 512) * u_texScale, H = min(L.z, 512) * u_texScale;\n";
+    s += k.texClampU ? "  u = clamp(u, 0, W - 1);\n" : "  u = ((u % W) + W) % W;\n";
+    s += k.texClampV ? "  v = clamp(v, 0, H - 1);\n" : "  v = ((v % H) + H) % H;\n";
+    // CLUT4/CLUT8 over a buffer: k texels share one pixel (its bytes or nibbles, low first, ref
+    // §6.1). u counts the texture's texels times u_texScale, so the pixel's scaled column is u / k
+    // and the texel's place within the pixel (u / u_texScale) mod k.
+    const bool clut = k.texFormat >= GE_TFMT_CLUT4 && k.texFormat <= GE_TFMT_CLUT32;
+    const int bits = k.texFormat == GE_TFMT_CLUT4 ? 4 : (k.texFormat == GE_TFMT_CLUT8 ? 8 : 0);
+    const int perPixel = bits ? (fb == GE_FORMAT_8888 ? 32 : 16) / bits : 1;
+    if (perPixel > 1)
+        s += "  ivec4 c = ivec4(texelFetch(u_tex, ivec2(L.w + u / " + std::to_string(perPixel) + ", L.x + v), 0));\n";
+    else
+        s += "  ivec4 c = ivec4(texelFetch(u_tex, ivec2(L.w + u, L.x + v), 0));\n";
+    if (clut) {
+        // The pixel's bits give the index (the whole pixel for CLUT16 over a 16-bit buffer and
+        // CLUT32 over 8888, a byte or nibble of it for CLUT8/CLUT4), masked as ((t >> SFT) & MSK)
+        // and looked up in the palette resolved per masked value (ref §6.4; hle/texture_decoder
+        // maskedPalette, which folds in CSA and the palette size).
+        if (fb == GE_FORMAT_8888) {
+            s += "  uint raw = uint(c.r) | (uint(c.g) << 8) | (uint(c.b) << 16) | (uint(c.a) << 24);\n";
+        } else {
+            switch (fb) {
+                case GE_FORMAT_565: s += "  uint raw = uint((c.r >> 3) | ((c.g >> 2) << 5) | ((c.b >> 3) << 11));\n"; break;
+                case GE_FORMAT_5551:
+                    s += "  uint raw = uint((c.r >> 3) | ((c.g >> 3) << 5) | ((c.b >> 3) << 10) | ((c.a >> 7) << 15));\n";
+                    break;
+                default: s += "  uint raw = uint((c.r >> 4) | ((c.g >> 4) << 4) | ((c.b >> 4) << 8) | ((c.a >> 4) << 12));\n"; break;
+            }
+        }
+        if (bits)
+            s += "  raw = (raw >> uint(((u / u_texScale) % " + std::to_string(perPixel) + ") * " + std::to_string(bits) +
+                 ")) & " + std::to_string((1 << bits) - 1) + "u;\n";
+        s += "  int m = int((raw >> uint(u_clut.x)) & uint(u_clut.y));\n"
+             "  return ivec4(texelFetch(u_clutTex, ivec2(m, 0), 0));\n"
+             "}\n";
+        return;
+    }
+    if (fb == GE_FORMAT_8888 || fb == k.texFormat) {
+        if (k.texFormat == GE_TFMT_5650) s += "  c.a = 255;\n";  // 5650 texels are opaque
+        s += "  return c;\n}\n";
+        return;
+    }
+    // The frame buffer's 16 bits (ref §8.8 stored form: the high bits of each channel).
+    switch (fb) {
+        case GE_FORMAT_565: s += "  int b16 = (c.r >> 3) | ((c.g >> 2) << 5) | ((c.b >> 3) << 11);\n"; break;
+        case GE_FORMAT_5551:
+            s += "  int b16 = (c.r >> 3) | ((c.g >> 3) << 5) | ((c.b >> 3) << 10) | ((c.a >> 7) << 15);\n";
+            break;
+        default: s += "  int b16 = (c.r >> 4) | ((c.g >> 4) << 4) | ((c.b >> 4) << 8) | ((c.a >> 4) << 12);\n"; break;
+    }
+    // Decoded as the texture format, with bit replication (hle/pixel_format decodePixel16).
+    switch (k.texFormat) {
+        case GE_TFMT_5650:
+            s += "  ivec3 q = ivec3(b16 & 31, (b16 >> 5) & 63, (b16 >> 11) & 31);\n"
+                 "  return ivec4((q.r << 3) | (q.r >> 2), (q.g << 2) | (q.g >> 4), (q.b << 3) | (q.b >> 2), 255);\n";
+            break;
+        case GE_TFMT_5551:
+            s += "  ivec3 q = ivec3(b16 & 31, (b16 >> 5) & 31, (b16 >> 10) & 31);\n"
+                 "  return ivec4((q << 3) | (q >> 2), ((b16 >> 15) & 1) * 255);\n";
+            break;
+        default:
+            s += "  return ivec4(b16 & 15, (b16 >> 4) & 15, (b16 >> 8) & 15, (b16 >> 12) & 15) * 17;\n";
+            break;
+    }
+    s += "}\n";
+}
+
 bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
     (void)err;
     std::string s;
@@ -330,7 +409,11 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         s += "layout(location = 0) inout uvec4 o_color;\n";
     else
         s += "layout(location = 0) out uvec4 o_color;\n";
+    // u_pixScale: render scale N of the hardware mode. gl_FragCoord counts the target's texels;
+    // the dither matrix is indexed by the PSP pixel (ref §8.4 step 8) and the level of detail is
+    // per PSP pixel (ref §6.6), so both divide by N.
     s += "uniform int u_dither[16];\n"
+         "uniform int u_pixScale;\n"
          "uniform ivec4 u_keep;\n"
          "uniform ivec2 u_zRange;\n";
     if (k.dstRead == DstRead::Texture) s += "uniform usampler2D u_dstColor;\n";
@@ -343,26 +426,33 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "uniform ivec2 u_texParams;\n"
              "uniform float u_texSlope;\n"
              "uniform ivec3 u_texEnv;\n";
-        s += "ivec4 texel(int lv, int u, int v) {\n"
-             "  ivec4 L = u_texLevels[lv];\n";
-        // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ref §8.10).
-        s += k.texClampU ? "  u = clamp(u, 0, min(L.y, 512) - 1);\n" : "  u = u & (L.y - 1) & 511;\n";
-        s += k.texClampV ? "  v = clamp(v, 0, min(L.z, 512) - 1);\n" : "  v = v & (L.z - 1) & 511;\n";
-        s += "  u = min(u, L.y - 1); v = min(v, L.z - 1);\n"
-             "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
-             "}\n";
+        if (k.texTarget) s += "uniform int u_texScale;\n";
+        if (k.texTarget && k.texFormat >= GE_TFMT_CLUT4) s += "uniform usampler2D u_clutTex;\nuniform ivec2 u_clut;\n";
+        if (!k.texTarget) {
+            s += "ivec4 texel(int lv, int u, int v) {\n"
+                 "  ivec4 L = u_texLevels[lv];\n";
+            // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ref §8.10).
+            s += k.texClampU ? "  u = clamp(u, 0, min(L.y, 512) - 1);\n" : "  u = u & (L.y - 1) & 511;\n";
+            s += k.texClampV ? "  v = clamp(v, 0, min(L.z, 512) - 1);\n" : "  v = v & (L.z - 1) & 511;\n";
+            s += "  u = min(u, L.y - 1); v = min(v, L.z - 1);\n"
+                 "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
+                 "}\n";
+        } else {
+            emitTargetTexel(s, k);
+        }
         // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
         // the sample point half a texel and keeps a 4-bit fraction (ref §8.10).
         // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
         // Linear rounds to nearest, ties to even, instead (sampler.cpp texelFixedRound).
         s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n"
              "int fixr(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(roundEven(p)) : int(0x80000000u); }\n"
+             // A render-target texture is addressed in its own (scaled) texels: u_texScale per texel.
              "ivec2 fixCoord(int lv, vec2 st) {\n"
-             "  vec2 p = st * (vec2(u_texLevels[lv].yz) * 256.0);\n"
+             "  vec2 p = st * (vec2(u_texLevels[lv].yz * " + std::string(k.texTarget ? "u_texScale" : "1") + ") * 256.0);\n"
              "  return ivec2(fixc(p.x), fixc(p.y));\n"
              "}\n"
              "ivec2 fixCoordRound(int lv, vec2 st) {\n"
-             "  vec2 p = st * (vec2(u_texLevels[lv].yz) * 256.0);\n"
+             "  vec2 p = st * (vec2(u_texLevels[lv].yz * " + std::string(k.texTarget ? "u_texScale" : "1") + ") * 256.0);\n"
              "  return ivec2(fixr(p.x), fixr(p.y));\n"
              "}\n"
              "ivec4 sampleNearest(int lv, vec2 st) {\n"
@@ -393,7 +483,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
                  "  int lod = clamp(int((floatBitsToUint(m) >> 19) & 0xFFFu) - 127 * 16, -4096, 4096);\n";
         } else if (k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
             s += "  vec2 size0 = vec2(u_texLevels[0].yz);\n"
-                 "  float m = max(abs(dFdx(st.x)) * size0.x, abs(dFdy(st.y)) * size0.y);\n"
+                 "  float m = max(abs(dFdx(st.x)) * size0.x, abs(dFdy(st.y)) * size0.y) * float(max(u_pixScale, 1));\n"
                  "  int lod = m > 0.0 ? int(floor(clamp(log2(m), -64.0, 64.0) * 16.0)) : -1024;\n";
         } else if (k.texLodMode == 2) {
             s += "  float m = u_texSlope * v_tex.w;\n"
@@ -444,7 +534,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "  if (v_fog >= 1.0) return 255;\n"
              "  return min(int(floor(v_fog * 256.0)), 255);\n"
              "}\n";
-    // alphaTest 9: the reference renderer's implicit "alpha != 0" test (softmodel/blend.h
+    // alphaTest 9: the reference renderer's implicit "alpha != 0" test (geometry/reference_rules.h
     // referenceDropsZeroAlpha), which replaces an off or trivially true alpha test: no uniforms.
     if (k.alphaTest && k.alphaTest != 9) {
         s += "uniform ivec2 u_alphaTest;\n";
@@ -640,7 +730,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         }
         s += "  }\n";
     }
-    if (k.dither) s += "  rgb += ivec3(u_dither[(pix.y & 3) * 4 + (pix.x & 3)]);\n";
+    if (k.dither) s += "  ivec2 psp = pix / max(u_pixScale, 1);\n  rgb += ivec3(u_dither[(psp.y & 3) * 4 + (psp.x & 3)]);\n";
     s += "  rgb = clamp(rgb, 0, 255);\n";
 
     // ---- alpha byte = stencil (ref §8.4 step 10, §8.7) ----

@@ -41,18 +41,22 @@ inline constexpr const char* kZRange = "u_zRange";          // ivec2 MINZ, MAXZ
 inline constexpr const char* kTexLevels = "u_texLevels";    // ivec4[8] (atlas y, w, h, 0)
 inline constexpr const char* kTexParams = "u_texParams";    // ivec2 max level, bias (1/16)
 inline constexpr const char* kTexSlope = "u_texSlope";      // float
+inline constexpr const char* kPixScale = "u_pixScale";      // int: render scale N (texels per PSP pixel)
+inline constexpr const char* kTexScale = "u_texScale";      // int: u_tex texels per PSP texel (render target)
+inline constexpr const char* kClut = "u_clut";              // ivec2: CLUT shift, mask (render-target CLUT16/32)
 }  // namespace uniform
 
 inline constexpr int kAttrPos = 0, kAttrColor = 1, kAttrColor2 = 2, kAttrTex = 3, kAttrFog = 4;
-inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2, kUnitTris = 3;
+inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2, kUnitTris = 3, kUnitClut = 5;  // 4: hw_vertex.h kUnitVertexBytes
+inline constexpr const char* kClutTexUniform = "u_clutTex";  // usampler2D 256×1: palette per masked index
 inline constexpr const char* kTrisUniform = "u_tris";  // usamplerBuffer of triangle records
 
 // Exact interpolation (HostCaps::exactInterp): every GL triangle has a record of kTexels RGBA32UI
 // texels in the buffer texture u_tris, at index gl_VertexID / 3 (translator/tri_setup.h fills
-// it from the software rasteriser's per-triangle setup, softmodel/raster.h). Only a_pos is read
+// it from the software rasteriser's per-triangle setup, geometry/raster.h). Only a_pos is read
 // from the vertex then; the vertex shader passes the record on as flat varyings and the fragment
 // shader evaluates Z, colours, fog, s, t, level of detail and W at the sample point with the
-// software rasteriser's arithmetic (softmodel/raster.cpp rasterTriangle: int64 depth plane,
+// software rasteriser's arithmetic (geometry/raster.cpp rasterTriangle: int64 depth plane,
 // single-precision attribute sums over float edge weights in the reference's vertex order).
 namespace tri {
 inline constexpr int kTexels = 15;

@@ -76,7 +76,7 @@ struct FsKey {
     // ---- per-fragment tests and colour ops ----
     u8 fog = 0;
     u8 alphaTest = 0;    // ATF + 1 (0 = no test); ALWAYS canonicalised to 0; 9 = alpha != 0
-                         // (the reference renderer's implicit test, softmodel/blend.h)
+                         // (the reference renderer's implicit test, geometry/reference_rules.h)
     u8 colorTest = 0;    // CTF + 1 (0 = no test)
     u8 depthRange = 0;   // MINZ/MAXZ test (not in through mode)
     u8 stencilTest = 0;  // STF + 1 (0 = no test)
@@ -94,7 +94,15 @@ struct FsKey {
     // ---- how the destination is read ----
     DstRead dstRead = DstRead::None;
     DepthRead depthRead = DepthRead::None;
-    u8 reserved[4] = {};
+    // ---- texture read from a render target (GL hardware mode, render-to-texture on the GPU) ----
+    // 0: the decoded atlas. 1 + GeBufferFormat: u_tex is the colour target of that format at
+    // render scale (u_texScale texels per PSP texel), sampled in place; its stored pixels are
+    // re-encoded to the frame buffer's 16 bits and decoded as texFormat (a 16-bit buffer read as
+    // another 16-bit format, ge-reference §8.8, §6.3).
+    u8 texTarget = 0;
+    u8 texFormat = 0;   // GeTextureFormat when texTarget: 0–3 (5650, 5551, 4444, 8888), or 6/7
+                        // (CLUT16 / CLUT32: the pixel is the index, looked up in u_clutTex)
+    u8 reserved[2] = {};
 };
 static_assert(sizeof(FsKey) == 40, "FsKey: every byte must be a named field");
 

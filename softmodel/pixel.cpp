@@ -9,6 +9,7 @@
 #include <array>
 #include <utility>
 
+#include "geometry/reference_rules.h"
 #include "softmodel/pixel_impl.h"
 
 namespace ge::soft {
@@ -36,10 +37,10 @@ inline void writeStencilOnly(const Impl& im, u8* p, u32 old, int stencil) {
 // Normal drawing. TEX: texture function on; BLEND: alpha blending on; ZTEST: depth test on;
 // FULL: at least one of depth range, alpha test, fog, colour test, stencil test, logic op.
 template <GeBufferFormat F, bool TEX, bool BLEND, bool ZTEST, bool FULL>
-void shadeNormal(const PixelState& ps, const Impl& im, const Fragment* frags, size_t n) {
+void shadeNormal(const PixelState& ps, const Impl& im, const geo::Fragment* frags, size_t n) {
     using FB = Fb<F>;
     for (size_t i = 0; i < n; ++i) {
-        const Fragment& f = frags[i];
+        const geo::Fragment& f = frags[i];
         if (f.x < 0 || f.y < 0) continue;
         const u64 off = u64(f.y) * ps.fbStride + u64(f.x);
         if (off >= im.fbPixels) continue;  // outside VRAM: dropped
@@ -118,10 +119,10 @@ void shadeNormal(const PixelState& ps, const Impl& im, const Fragment* frags, si
 // alpha (= stencil, the vertex alpha) and depth written as CEN/AEN/ZEN say (keepMask holds the
 // CEN/AEN part).
 template <GeBufferFormat F, bool ZEN>
-void shadeClear(const PixelState& ps, const Impl& im, const Fragment* frags, size_t n) {
+void shadeClear(const PixelState& ps, const Impl& im, const geo::Fragment* frags, size_t n) {
     using FB = Fb<F>;
     for (size_t i = 0; i < n; ++i) {
-        const Fragment& f = frags[i];
+        const geo::Fragment& f = frags[i];
         if (f.x < 0 || f.y < 0) continue;
         const u64 off = u64(f.y) * ps.fbStride + u64(f.x);
         if (off >= im.fbPixels) continue;
@@ -252,10 +253,11 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->alphaMask = int(st.ATEST_mask());
     im->alphaRef = int(st.ATEST_ref()) & im->alphaMask;
     im->alphaTest = st.ATE_on() && !clear && im->alphaFunc != CMP_ALWAYS;
-    // The reference renderer's skipped alpha test for CLUT textures (blend.h).
-    if (im->alphaTest && referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull)) im->alphaTest = false;
-    // The reference renderer's implicit "alpha != 0" test for source-alpha blending (blend.h).
-    if (!clear && referenceDropsZeroAlpha(st, im->texture)) {
+    // The reference renderer's skipped alpha test for CLUT textures (geometry/reference_rules.h,
+    // which the GL translator's shader keys apply too).
+    if (im->alphaTest && geo::referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull)) im->alphaTest = false;
+    // The reference renderer's implicit "alpha != 0" test for source-alpha blending (ditto).
+    if (!clear && geo::referenceDropsZeroAlpha(st, im->texture)) {
         im->alphaTest = true;
         im->alphaFunc = CMP_NOTEQUAL;
         im->alphaMask = 0xFF;
@@ -342,7 +344,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     return ps;
 }
 
-void shadeFragments(const PixelState& ps, const Fragment* frags, size_t n) {
+void shadeFragments(const PixelState& ps, const geo::Fragment* frags, size_t n) {
     if (!ps.impl || !ps.impl->shade || !ps.fb || !frags) return;
     ps.impl->shade(ps, *ps.impl, frags, n);
 }

@@ -1,35 +1,24 @@
-// The contract between the software model's rasteriser (raster side: softmodel/raster*,
-// transform*, clip*) and its per-pixel stages (pixel side: softmodel/pixel*, sampler*).
+// The contract between the rasteriser the software model draws with (raster side:
+// geometry/raster*, transform*, clip*) and its per-pixel stages (pixel side: softmodel/pixel*,
+// sampler*).
 //
-// The rasteriser turns primitives into Fragments, in primitive order, already limited to the
-// scissor/region rectangle; the pixel side runs manual §13–§17 on each (texture sampling and
-// function, colour addition, fog, tests, stencil, depth, blending, dithering, clamp, logic op,
-// masks) and writes the frame and depth buffers in emulated VRAM in their real formats.
-// Everything here is integer/fixed point except texture coordinates; results are bit-exact and
+// The rasteriser turns primitives into Fragments (geometry/fragment.h), in primitive order,
+// already limited to the scissor/region rectangle; the pixel side runs manual §13–§17 on each
+// (texture sampling and function, colour addition, fog, tests, stencil, depth, blending,
+// dithering, clamp, logic op, masks) and writes the frame and depth buffers in emulated VRAM in
+// their real formats. Everything here is integer/fixed point except texture coordinates; results are bit-exact and
 // independent of thread count (threads own disjoint rows).
 #pragma once
 #include <memory>
 #include <vector>
 
+#include "geometry/fragment.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
 
 namespace ge::soft {
 
 class TextureCache;  // decoded texture levels reused across draws (pixel side owns it)
-
-struct Fragment {
-    int x = 0, y = 0;        // drawing coordinates, inside the scissor
-    u16 z = 0;               // screen Z, 0–65535
-    u8 color[4] = {};        // primary RGBA (Gouraud-interpolated and truncated, or flat)
-    u8 secondary[3] = {};    // secondary RGB (separate specular), 0 when none
-    u8 fog = 255;            // fog factor f as 8 bits: 255 no fog, 0 full fog colour (§8.9)
-    float s = 0, t = 0;      // texture coordinates in units of the level-0 size (1.0 = full width),
-                             // perspective-divided, not yet wrapped/clamped, SU/SV/TU/TV applied
-    float lod = 0;           // texture level of detail d for TLEVEL mode 0 (log2 texels per pixel
-                             // at level 0), computed by the rasteriser from neighbouring pixels
-    float w = 1;             // clip-space W, for TLEVEL mode 2 (slope)
-};
 
 // Per-draw pixel state derived once from GeState (and memory pointers), read-only while shading.
 struct PixelState {
@@ -50,12 +39,13 @@ struct PixelState {
 // Builds the pixel state for the draw about to happen. `through` and `clearMode` come from the
 // packet/state; `textureEnabled` may be overridden (immediate vertices carry their own flags).
 // `vertexAlphaFull`: every primary colour of the draw that reaches a fragment has alpha 255 (the
-// reference's skipped alpha test depends on it, blend.h referenceSkipsAlphaTest).
+// reference's skipped alpha test depends on it, geometry/reference_rules.h
+// referenceSkipsAlphaTest).
 PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled,
                            bool vertexAlphaFull = false);
 
 // Runs the whole per-pixel pipeline for n fragments, in order.
-void shadeFragments(const PixelState& ps, const Fragment* frags, size_t n);
+void shadeFragments(const PixelState& ps, const geo::Fragment* frags, size_t n);
 
 // Decoded-texture cache shared by draws of one renderer (invalidate on memory writes, TFLUSH,
 // CLUT loads).

@@ -12,7 +12,7 @@
 namespace ge::soft {
 
 struct PixelState::Impl {
-    using ShadeFn = void (*)(const PixelState&, const Impl&, const Fragment*, size_t);
+    using ShadeFn = void (*)(const PixelState&, const Impl&, const geo::Fragment*, size_t);
     ShadeFn shade = nullptr;  // the routine specialised for this state (pixel.cpp)
 
     // Buffers: pixels addressable from fb/zb without leaving VRAM (offset y·stride + x must be

@@ -39,8 +39,8 @@ int levelOfDetail16(const LodParams& p, float lod, float w) {
     switch (p.mode) {
     case 0: {
         // Fragment::lod is the rasteriser's log2 of the texel/pixel ratio, formed the GE's way
-        // (exponent + top mantissa bits of the ratio, raster.cpp texLog2): the 4-bit detail is its
-        // floor in 1/16 steps, i.e. the exponent and the top 4 mantissa bits.
+        // (exponent + top mantissa bits of the ratio, geometry/raster.cpp texLog2): the 4-bit
+        // detail is its floor in 1/16 steps, i.e. the exponent and the top 4 mantissa bits.
         const float x16 = lod * 16.0f;
         d = x16 >= 4096.0f ? 4096 : (x16 > -4096.0f ? int(std::floor(x16)) : -4096);  // NaN → −4096
         break;

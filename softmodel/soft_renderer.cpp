@@ -9,13 +9,13 @@
 #include <thread>
 #include <vector>
 
-#include "hle/spline.h"
+#include "geometry/assembly.h"
+#include "geometry/clip.h"
+#include "geometry/raster.h"
+#include "geometry/spline.h"
+#include "geometry/transform.h"
 #include "hle/vertex_decoder.h"
-#include "softmodel/assembly.h"
-#include "softmodel/clip.h"
 #include "softmodel/pixel.h"
-#include "softmodel/raster.h"
-#include "softmodel/transform.h"
 
 namespace ge::soft {
 
@@ -27,7 +27,7 @@ constexpr size_t kBatchVertices = 24576;
 constexpr int kMaxThreads = 32;                // 64 bands of 16 rows cover the 1024-row space
 
 struct RasterPrim {
-    PrimKind kind = PrimKind::Point;
+    geo::PrimKind kind = geo::PrimKind::Point;
     u32 v[3] = {};   // indices into Batch::verts
     u32 prov = 0;    // flat-shading vertex (triangles)
     int y1 = 0, y2 = -1;  // pixel rows the primitive can touch, clipped
@@ -35,7 +35,7 @@ struct RasterPrim {
 
 struct DrawItem {
     PixelState ps;
-    RasterParams rp;
+    geo::RasterParams rp;
     u32 firstPrim = 0, primEnd = 0;
 };
 
@@ -78,7 +78,7 @@ struct Target {
 };
 
 struct Batch {
-    std::vector<ScreenVertex> verts;
+    std::vector<geo::ScreenVertex> verts;
     std::vector<RasterPrim> prims;
     std::vector<DrawItem> draws;
     std::vector<VramRange> writes;  // what the queued draws may write (frame and depth buffers)
@@ -93,24 +93,26 @@ struct Batch {
     }
 };
 
-void shadeCallback(void* ctx, const Fragment* f, size_t n) { shadeFragments(*static_cast<const PixelState*>(ctx), f, n); }
+void shadeCallback(void* ctx, const geo::Fragment* f, size_t n) {
+    shadeFragments(*static_cast<const PixelState*>(ctx), f, n);
+}
 
 // Rasterises every primitive of a batch that touches the band, draw by draw, in order.
-void rasterBatch(const Batch& b, const Band& band, std::vector<Fragment>& buf) {
-    FragmentSink sink(buf.data(), buf.size(), shadeCallback, nullptr);
+void rasterBatch(const Batch& b, const geo::Band& band, std::vector<geo::Fragment>& buf) {
+    geo::FragmentSink sink(buf.data(), buf.size(), shadeCallback, nullptr);
     for (const DrawItem& d : b.draws) {
         sink.setTarget(shadeCallback, const_cast<PixelState*>(&d.ps));
         for (u32 i = d.firstPrim; i < d.primEnd; ++i) {
             const RasterPrim& p = b.prims[i];
             if (!band.overlaps(p.y1, p.y2)) continue;
-            const ScreenVertex* v = b.verts.data();
+            const geo::ScreenVertex* v = b.verts.data();
             switch (p.kind) {
-            case PrimKind::Triangle:
-                rasterTriangle(d.rp, v[p.v[0]], v[p.v[1]], v[p.v[2]], v[p.prov], band, sink);
+            case geo::PrimKind::Triangle:
+                geo::rasterTriangle(d.rp, v[p.v[0]], v[p.v[1]], v[p.v[2]], v[p.prov], band, sink);
                 break;
-            case PrimKind::Rect: rasterRectangle(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
-            case PrimKind::Line: rasterLine(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
-            case PrimKind::Point: rasterPoint(d.rp, v[p.v[0]], band, sink); break;
+            case geo::PrimKind::Rect: geo::rasterRectangle(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
+            case geo::PrimKind::Line: geo::rasterLine(d.rp, v[p.v[0]], v[p.v[1]], band, sink); break;
+            case geo::PrimKind::Point: geo::rasterPoint(d.rp, v[p.v[0]], band, sink); break;
             }
         }
     }
@@ -131,8 +133,8 @@ VramRange vramRange(u32 addr, u64 bytes) {
     return {off, u32(end)};
 }
 
-RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
-    RasterParams rp;
+geo::RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
+    geo::RasterParams rp;
     // Scissor ∩ REGION2 (§8.6; REGION1 is kept 0 by games).
     rp.clipX1 = int(st.SCISSOR1_x());
     rp.clipY1 = int(st.SCISSOR1_y());
@@ -158,7 +160,7 @@ struct SoftRenderer::Impl {
         int n = opt.threads;
         if (n <= 0) n = int(std::thread::hardware_concurrency());
         threads = std::clamp(n, 1, kMaxThreads);
-        fragBufs.resize(size_t(threads), std::vector<Fragment>(kFragmentBuffer));
+        fragBufs.resize(size_t(threads), std::vector<geo::Fragment>(kFragmentBuffer));
         if (threads > 1) {
             for (int i = 0; i < threads; ++i) workers.emplace_back([this, i] { workerLoop(i); });
         }
@@ -185,7 +187,7 @@ struct SoftRenderer::Impl {
                 seen = generation;
                 b = job;
             }
-            rasterBatch(*b, Band{index, threads}, fragBufs[size_t(index)]);
+            rasterBatch(*b, geo::Band{index, threads}, fragBufs[size_t(index)]);
             {
                 std::lock_guard<std::mutex> lk(m);
                 if (--remaining == 0) cvDone.notify_all();
@@ -219,7 +221,7 @@ struct SoftRenderer::Impl {
         ++stats.batches;
         retireInFlight();
         if (threads <= 1) {
-            rasterBatch(b, Band{}, fragBufs[0]);
+            rasterBatch(b, geo::Band{}, fragBufs[0]);
             retire(b);
             return;
         }
@@ -281,7 +283,7 @@ struct SoftRenderer::Impl {
 
     // The render target of a draw with this state and clip rectangle: the frame/depth buffer
     // bytes it may write.
-    static Target targetOf(const GeState& st, const RasterParams& rp) {
+    static Target targetOf(const GeState& st, const geo::RasterParams& rp) {
         Target t;
         const int rows = std::clamp(rp.clipY2 + 1, 0, 1024);
         const u32 bpp = st.framebufFormat() == GE_FORMAT_8888 ? 4 : 2;
@@ -318,11 +320,11 @@ struct SoftRenderer::Impl {
     // Whether every primary colour of the assembled primitives that reaches a fragment has alpha
     // 255: all vertices with Gouraud shading, the provoking one with flat shading and for
     // rectangles (as the reference's CalculateRasterStateFlags reads them).
-    bool colorsReachingFragmentsFullAlpha(const RasterParams& rp) const {
+    bool colorsReachingFragmentsFullAlpha(const geo::RasterParams& rp) const {
         for (const RasterPrim& p : scratchPrims) {
             if (scratchVerts[p.prov].color[3] != 255) return false;
-            if (!rp.gouraud || p.kind == PrimKind::Rect) continue;
-            const int n = p.kind == PrimKind::Triangle ? 3 : (p.kind == PrimKind::Line ? 2 : 1);
+            if (!rp.gouraud || p.kind == geo::PrimKind::Rect) continue;
+            const int n = p.kind == geo::PrimKind::Triangle ? 3 : (p.kind == geo::PrimKind::Line ? 2 : 1);
             for (int k = 0; k < n; ++k)
                 if (scratchVerts[p.v[k]].color[3] != 255) return false;
         }
@@ -330,7 +332,7 @@ struct SoftRenderer::Impl {
     }
 
     // Queues the primitives assembled in `scratch` as one draw with the given state.
-    void queueDraw(const GeState& st, const RasterParams& rp, bool textured, bool forceRebuild) {
+    void queueDraw(const GeState& st, const geo::RasterParams& rp, bool textured, bool forceRebuild) {
         if (scratchPrims.empty()) return;
         // Render to texture: the texture must see every earlier draw's pixels (§8.13).
         if (rp.textured && textureHazard(st)) waitIdle();
@@ -375,18 +377,18 @@ struct SoftRenderer::Impl {
         }
         return u32(vertIndex[ci]);
     }
-    u32 pushNew(const ScreenVertex& sv) {
+    u32 pushNew(const geo::ScreenVertex& sv) {
         scratchVerts.push_back(sv);
         return u32(scratchVerts.size() - 1);
     }
-    void addPrim(PrimKind kind, u32 a, u32 b, u32 c, u32 prov) {
+    void addPrim(geo::PrimKind kind, u32 a, u32 b, u32 c, u32 prov) {
         RasterPrim p;
         p.kind = kind;
         p.v[0] = a, p.v[1] = b, p.v[2] = c;
         p.prov = prov;
-        const ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
-        if (!primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
-        const u64 bound = primitivePixelBound(rp, kind, v, p.y1, p.y2);
+        const geo::ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
+        if (!geo::primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
+        const u64 bound = geo::primitivePixelBound(rp, kind, v, p.y1, p.y2);
         if (bound > pixelBudgetLeft) {  // the GE-time limit reached into this draw: dropped,
             pixelBudgetLeft = 0;        // but charged, so the engine sees the limit passed
             pixelWork += bound;
@@ -401,7 +403,7 @@ struct SoftRenderer::Impl {
     // Back-face culling (§3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
     // clockwise ones. Zero-area triangles are never culled: the rasteriser draws the samples they
     // pass through as the reference does (raster.cpp rasterZeroAreaTriangle).
-    bool culled(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c) const {
+    bool culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c) const {
         const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
         if (!cullOn || area == 0) return false;
         return cullClockwise ? area > 0 : area < 0;
@@ -411,11 +413,11 @@ struct SoftRenderer::Impl {
     // `ring`, when given, is the order the vertices are handed to the rasteriser in (see assemble);
     // (ia, ib, ic) is the winding order used for culling and clipping.
     void triangle(u32 ia, u32 ib, u32 ic, const u32* ring = nullptr) {
-        const ClipVertex& a = cverts[ia];
-        const ClipVertex& b = cverts[ib];
-        const ClipVertex& c = cverts[ic];
-        const ClipVertex* v[3] = {&a, &b, &c};
-        if (!a.valid || !b.valid || !c.valid || discardPrimitive(*ts, v, 3)) {
+        const geo::ClipVertex& a = cverts[ia];
+        const geo::ClipVertex& b = cverts[ib];
+        const geo::ClipVertex& c = cverts[ic];
+        const geo::ClipVertex* v[3] = {&a, &b, &c};
+        if (!a.valid || !b.valid || !c.valid || geo::discardPrimitive(*ts, v, 3)) {
             ++stats.discarded;
             return;
         }
@@ -426,12 +428,12 @@ struct SoftRenderer::Impl {
             }
             // Near clipping whatever CLE says: CLE selects only the depth clamp and the discard
             // rule (ge-reference §8.5, corrected; PPSSPP Clipper::ProcessTriangle).
-            if (beyondNear(a) || beyondNear(b) || beyondNear(c)) {
+            if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
                 // Clipped in the reference's vertex order (the strip/fan ring, clip.h).
-                const bool reversed = ring && ringReversed(ring, ia, ib);
-                ClipVertex poly[4];
-                const int n = ring ? clipTriangleNear(*ts, cverts[ring[0]], cverts[ring[1]], cverts[ring[2]], poly)
-                                   : clipTriangleNear(*ts, a, b, c, poly);
+                const bool reversed = ring && geo::ringReversed(ring, ia, ib);
+                geo::ClipVertex poly[4];
+                const int n = ring ? geo::clipTriangleNear(*ts, cverts[ring[0]], cverts[ring[1]], cverts[ring[2]], poly)
+                                   : geo::clipTriangleNear(*ts, a, b, c, poly);
                 ++stats.clipped;
                 if (n < 3) return;
                 // Flat shading keeps the original provoking vertex's colour.
@@ -447,7 +449,7 @@ struct SoftRenderer::Impl {
                     for (int j : {0, k, k + 1}) {
                         if (!pushed[j]) idx[j] = pushNew(poly[j].sv), pushed[j] = true;
                     }
-                    addPrim(PrimKind::Triangle, idx[0], idx[k], idx[k + 1], prov);
+                    addPrim(geo::PrimKind::Triangle, idx[0], idx[k], idx[k + 1], prov);
                 }
                 return;
             }
@@ -456,41 +458,44 @@ struct SoftRenderer::Impl {
             ++stats.culled;
             return;
         }
-        if (ring) addPrim(PrimKind::Triangle, pushVertex(ring[0]), pushVertex(ring[1]), pushVertex(ring[2]), pushVertex(ic));
-        else addPrim(PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
+        if (ring) {
+            addPrim(geo::PrimKind::Triangle, pushVertex(ring[0]), pushVertex(ring[1]), pushVertex(ring[2]), pushVertex(ic));
+        } else {
+            addPrim(geo::PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
+        }
     }
 
     void line(u32 ia, u32 ib) {
-        const ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
-        if (!v[0]->valid || !v[1]->valid || discardPrimitive(*ts, v, 2)) {
+        const geo::ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
+        if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(*ts, v, 2)) {
             ++stats.discarded;
             return;
         }
-        if (!ts->through && (beyondNear(*v[0]) || beyondNear(*v[1]))) {  // whatever CLE says (§8.5)
-            ClipVertex a = *v[0], b = *v[1];
+        if (!ts->through && (geo::beyondNear(*v[0]) || geo::beyondNear(*v[1]))) {  // whatever CLE says (§8.5)
+            geo::ClipVertex a = *v[0], b = *v[1];
             ++stats.clipped;
-            if (!clipLineNear(*ts, a, b)) return;
+            if (!geo::clipLineNear(*ts, a, b)) return;
             const u32 i0 = pushNew(a.sv), i1 = pushNew(b.sv);
-            addPrim(PrimKind::Line, i0, i1, i1, i1);
+            addPrim(geo::PrimKind::Line, i0, i1, i1, i1);
             return;
         }
         const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
-        addPrim(PrimKind::Line, i0, i1, i1, i1);
+        addPrim(geo::PrimKind::Line, i0, i1, i1, i1);
     }
 
     void point(u32 ia) {
-        const ClipVertex* v[1] = {&cverts[ia]};
-        if (!v[0]->valid || discardPrimitive(*ts, v, 1)) {
+        const geo::ClipVertex* v[1] = {&cverts[ia]};
+        if (!v[0]->valid || geo::discardPrimitive(*ts, v, 1)) {
             ++stats.discarded;
             return;
         }
         const u32 i = pushVertex(ia);
-        addPrim(PrimKind::Point, i, i, i, i);
+        addPrim(geo::PrimKind::Point, i, i, i, i);
     }
 
     void rectangle(u32 ia, u32 ib) {
-        const ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
-        if (!v[0]->valid || !v[1]->valid || discardPrimitive(*ts, v, 2)) {
+        const geo::ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
+        if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(*ts, v, 2)) {
             ++stats.discarded;
             return;
         }
@@ -499,25 +504,26 @@ struct SoftRenderer::Impl {
             return;
         }
         const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
-        addPrim(PrimKind::Rect, i0, i1, i1, i1);
+        addPrim(geo::PrimKind::Rect, i0, i1, i1, i1);
     }
 
     // Rectangles with texture projection are drawn as two triangles (§8.2), corners textured by
     // the orientation table, colour/Z/fog of the second vertex.
-    void rectangleAsTriangles(const ScreenVertex& v0, const ScreenVertex& v1) {
+    void rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
         if (v0.x == v1.x || v0.y == v1.y) return;
-        const u32 tl = pushNew(rectangleCorner(v0, v1, 0, 0)), tr = pushNew(rectangleCorner(v0, v1, 1, 0));
-        const u32 bl = pushNew(rectangleCorner(v0, v1, 0, 1)), br = pushNew(rectangleCorner(v0, v1, 1, 1));
-        addPrim(PrimKind::Triangle, tl, tr, bl, bl);
-        addPrim(PrimKind::Triangle, tr, br, bl, bl);
+        const u32 tl = pushNew(geo::rectangleCorner(v0, v1, 0, 0)), tr = pushNew(geo::rectangleCorner(v0, v1, 1, 0));
+        const u32 bl = pushNew(geo::rectangleCorner(v0, v1, 0, 1)), br = pushNew(geo::rectangleCorner(v0, v1, 1, 1));
+        addPrim(geo::PrimKind::Triangle, tl, tr, bl, bl);
+        addPrim(geo::PrimKind::Triangle, tr, br, bl, bl);
     }
 
-    // Strip/fan quads drawn as rectangles (softmodel/assembly.h, shared with the GL translator):
+    // Strip/fan quads drawn as rectangles (geometry/assembly.h, shared with the GL translator):
     // `tl`/`br` get the top-left and bottom-right vertices (the rectangle's v0 and v1).
     bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
-        const ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
+        const geo::ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
         int itl = 0, ibr = 0;
-        if (!(fan ? fanQuadAsRect(rectDetect, d, itl, ibr) : stripQuadAsRect(rectDetect, d, itl, ibr))) return false;
+        const bool rect = fan ? geo::fanQuadAsRect(rectDetect, d, itl, ibr) : geo::stripQuadAsRect(rectDetect, d, itl, ibr);
+        if (!rect) return false;
         tl = q[itl], br = q[ibr];
         return true;
     }
@@ -526,14 +532,14 @@ struct SoftRenderer::Impl {
     // complete a primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (§3.2,
     // §8.11).
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-        assemblePrimitives(prim, seq, rectDetect.allowed && !cullOn, stripOdd, *this, keepScratch);
+        geo::assemblePrimitives(prim, seq, rectDetect.allowed && !cullOn, stripOdd, *this, keepScratch);
         if (keepPending) {
             pending.clear();
             for (u32 k : keepScratch) pending.push_back(cverts[k]);
         }
     }
 
-    void beginAssembly(const TransformState& t, const RasterParams& r, bool cull, bool cullCw) {
+    void beginAssembly(const geo::TransformState& t, const geo::RasterParams& r, bool cull, bool cullCw) {
         ts = &t;
         rp = r;
         cullOn = cull;
@@ -545,19 +551,19 @@ struct SoftRenderer::Impl {
 
     // Decodes the vertices a draw uses (each distinct one once) into cverts after `first`
     // entries already there, and the draw order into `seq`. False on unreadable data.
-    bool decodeDraw(const GeState& st, u32 vtype, u32 vaddr, u32 iaddr, u32 count, const TransformState& t,
+    bool decodeDraw(const GeState& st, u32 vtype, u32 vaddr, u32 iaddr, u32 count, const geo::TransformState& t,
                     std::vector<u32>& seq) {
         VertexReader reader(mem, st, vtype);
         if (!reader.readIndices(iaddr, count, indices)) return false;
         const bool skin = reader.hasWeights() && !reader.through();
         const size_t first = cverts.size();
         bool anyBad = false;
-        auto process = [&](u32 index, ClipVertex& out) {
+        auto process = [&](u32 index, geo::ClipVertex& out) {
             DecodedVertex dv;
             bool ok = reader.read(vaddr, index, dv);
             anyBad |= !ok;
             if (ok && skin) applySkinning(st, vtype, dv);
-            transformVertex(t, dv, out);
+            geo::transformVertex(t, dv, out);
             out.valid = ok && reader.hasPosition();  // no position: dropped (§8.11)
         };
         u32 lo = ~0u, hi = 0;
@@ -602,28 +608,28 @@ struct SoftRenderer::Impl {
     int remaining = 0;
     bool quit = false;
     const Batch* job = nullptr;
-    std::vector<std::vector<Fragment>> fragBufs;
+    std::vector<std::vector<geo::Fragment>> fragBufs;
 
     PixelState ps;
     bool psValid = false, psThrough = false, psTextured = false, psAlphaFull = false;
     u32 pendingDirty = DIRTY_ALL;
 
     // Assembly state of the draw being built.
-    const TransformState* ts = nullptr;
-    RasterParams rp;
+    const geo::TransformState* ts = nullptr;
+    geo::RasterParams rp;
     bool cullOn = false, cullClockwise = false;
-    std::vector<ClipVertex> cverts;
+    std::vector<geo::ClipVertex> cverts;
     std::vector<s32> vertIndex;
-    std::vector<ScreenVertex> scratchVerts;
+    std::vector<geo::ScreenVertex> scratchVerts;
     std::vector<RasterPrim> scratchPrims;
     std::vector<u32> indices, seq;
     // PRIM type 7 continuation: the transformed vertices still open, and the strip parity.
-    std::vector<ClipVertex> pending;
+    std::vector<geo::ClipVertex> pending;
     std::vector<u32> keepScratch;  // assemble's continuation indices (reused)
     bool stripOdd = false;
     // Strip/fan-as-rectangle detection (assembly.h) for the PRIM being assembled: allowed only for
     // a fresh PRIM (no open vertices), with what the comparison needs from the state.
-    RectDetect rectDetect;
+    geo::RectDetect rectDetect;
 };
 
 SoftRenderer::SoftRenderer(Memory& mem, const SoftOptions& opt) : impl_(std::make_unique<Impl>(mem, opt)) {}
@@ -642,7 +648,7 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
         I.stripOdd = false;
     }
     VertexReader probe(I.mem, st, p.vtype);
-    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal());
+    const geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal());
     // The still-open vertices of the previous PRIM come first.
     I.cverts.assign(I.pending.begin(), I.pending.end());
     std::vector<u32>& seq = I.seq;
@@ -657,9 +663,9 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
     full.insert(full.end(), seq.begin(), seq.end());
 
     const bool textured = st.TME_on();
-    const RasterParams rp = makeRasterParams(st, ts.through, textured);
+    const geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    I.rectDetect = RectDetect::fromState(st, ts.through, textured, I.pending.empty());
+    I.rectDetect = geo::RectDetect::fromState(st, ts.through, textured, I.pending.empty());
     I.assemble(p.prim, full, true);
     I.rectDetect.allowed = false;
     I.queueDraw(st, rp, textured, false);
@@ -672,9 +678,9 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     ++I.stats.patches;
     I.pending.clear();
     I.stripOdd = false;
-    TessOutput tess;
+    geo::TessOutput tess;
     std::string err;
-    if (!tessellatePatch(I.mem, st, p, tess, &err)) {
+    if (!geo::tessellatePatch(I.mem, st, p, tess, &err)) {
         ++I.stats.badDraws;
         return;
     }
@@ -682,10 +688,10 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     VertexReader probe(I.mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (§3.2).
     const bool hasNormal = probe.hasNormal() || st.LTE_on();
-    const TransformState ts = makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
+    const geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
     I.cverts.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
-        transformVertex(ts, tess.verts[i], I.cverts[i]);
+        geo::transformVertex(ts, tess.verts[i], I.cverts[i]);
         I.cverts[i].valid = true;
     }
     I.stats.vertices += tess.verts.size();
@@ -695,7 +701,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
         if (i < tess.verts.size()) seq.push_back(i);
 
     const bool textured = st.TME_on();
-    const RasterParams rp = makeRasterParams(st, ts.through, textured);
+    const geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
     // Patch culling (CMD_PCE, §11.2) removes patches outside the drawing region; the clip
     // rectangle already includes REGION2, so those pixels are never drawn either way.
@@ -724,13 +730,13 @@ void SoftRenderer::drawImmediate(const ImmPacket& p) {
     setFlag(GE_CMD_DTE, (f >> 23) & 1);
 
     // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
-    TransformState ts;
+    geo::TransformState ts;
     ts.through = true;
     const bool through = st.isThrough();
     std::vector<u32>& seq = I.seq;
-    immediateVertices(st, p.vertices, I.cverts, seq);
+    geo::immediateVertices(st, p.vertices, I.cverts, seq);
     const bool textured = st.TME_on();
-    RasterParams rp = makeRasterParams(st, true, textured);
+    geo::RasterParams rp = makeRasterParams(st, true, textured);
     rp.fog = st.FGE_on() && !through;
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
     const bool odd = I.stripOdd;
@@ -781,6 +787,9 @@ void SoftRenderer::memoryWritten(u32 addr, u32 size) {
 }
 
 void SoftRenderer::flushToMemory() { impl_->waitIdle(); }
+
+// Frame buffers are guest memory itself here; textures are re-hashed on next use.
+void SoftRenderer::hostMayHaveWritten(bool) { textureFlush(); }
 
 u64 SoftRenderer::pixelWork() const { return impl_->pixelWork; }
 void SoftRenderer::setPixelBudget(u64 pixels) { impl_->pixelBudgetLeft = pixels; }

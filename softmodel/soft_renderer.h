@@ -1,12 +1,13 @@
 // The software model's Renderer: ge2gl's bit-accurate CPU GE (manual §3–§11; ge-reference.md §8).
 //
 // Per draw, on the caller's thread: vertices are decoded once (hle/vertex_decoder.h; patches via
-// hle/spline.h), transformed, lit and clipped (transform.h, lighting.h, clip.h), assembled into
-// points, lines, triangles and rectangles (strip/fan state survives PRIM type 7), culled, and
-// queued with the draw's PixelState (pixel.h) into a batch. Batches are rasterised by worker
-// threads, each owning a set of 16-row bands (raster.h Band) and walking every primitive of the
-// batch in order, so every pixel is shaded by exactly one thread in primitive order: the output
-// is identical for any thread count. While workers rasterise one batch the caller builds the next.
+// geometry/spline.h), transformed, lit and clipped (geometry/transform.h, lighting.h, clip.h, the
+// code the GL translator runs too), assembled into points, lines, triangles and rectangles
+// (geometry/assembly.h; strip/fan state survives PRIM type 7), culled, and queued with the draw's
+// PixelState (pixel.h) into a batch. Batches are rasterised by worker threads, each owning a set
+// of 16-row bands (geometry/raster.h Band) and walking every primitive of the batch in order, so
+// every pixel is shaded by exactly one thread in primitive order: the output is identical for any
+// thread count. While workers rasterise one batch the caller builds the next.
 //
 // Synchronisation: finish(), flushToMemory(), transfers, memoryWritten(), syncMemoryForRead()
 // touching VRAM, and a texture read from a range that queued draws may still write (render to
@@ -51,6 +52,7 @@ public:
     void finish() override;
     void syncMemoryForRead(u32 addr, u32 size) override;
     void memoryWritten(u32 addr, u32 size) override;
+    void hostMayHaveWritten(bool frameBuffers) override;
     void flushToMemory() override;
     u64 pixelWork() const override;
     void setPixelBudget(u64 pixels) override;

@@ -2,6 +2,7 @@
 // headers' build hygiene.
 #include <gtest/gtest.h>
 
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -196,4 +197,51 @@ TEST(ApiExample, MinimalHostRendersAFrame) {
     const unsigned char expect[8] = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A};
     EXPECT_EQ(std::memcmp(sig, expect, 8), 0);
     EXPECT_GT(size, 480 * 272 * 4);  // stored (uncompressed) deflate blocks
+}
+
+// API 1.1: the GL hardware mode and its render scale come through the config; a 1.0 host's smaller
+// config is still accepted (defaults: exact mode, scale 1). Invalid combinations are refused.
+TEST(ApiGl, HardwareModeAtScaleTwoFromTheConfig) {
+    std::vector<uint8_t> ram(kRamSize), vram(0x200000);
+    ge2gl_config cfg;
+    ge2gl_config_init(&cfg);
+    cfg.ram = ram.data();
+    cfg.ram_size = kRamSize;
+    cfg.vram = vram.data();
+    cfg.backend = GE2GL_BACKEND_GL_HEADLESS;
+    cfg.gl_mode = GE2GL_GL_MODE_EXACT;
+    cfg.render_scale = 2;
+    ge2gl_context* h = nullptr;
+    EXPECT_EQ(ge2gl_create(&cfg, &h), GE2GL_ERR_INVALID_ARGUMENT);  // scale needs the hw mode
+    cfg.gl_mode = 7;
+    cfg.render_scale = 1;
+    EXPECT_EQ(ge2gl_create(&cfg, &h), GE2GL_ERR_INVALID_ARGUMENT);
+    cfg.gl_mode = GE2GL_GL_MODE_HW;
+    cfg.render_scale = 9;
+    EXPECT_EQ(ge2gl_create(&cfg, &h), GE2GL_ERR_INVALID_ARGUMENT);
+    cfg.render_scale = 2;
+    if (ge2gl_create(&cfg, &h) != GE2GL_OK) GTEST_SKIP() << "GL backend unavailable";
+    const uint32_t list = buildScene(ram, vram);
+    int32_t id, s;
+    ASSERT_EQ(ge2gl_list_enqueue(h, list, 0, -1, nullptr, &id), GE2GL_OK);
+    ASSERT_EQ(ge2gl_draw_sync(h, GE2GL_SYNC_WAIT, &s), GE2GL_OK);
+    std::vector<uint8_t> rgba(480 * 272 * 4);
+    ASSERT_EQ(ge2gl_read_frame(h, 0x04000000, 512, GE2GL_FORMAT_8888, 480, 272, rgba.data(), rgba.size()), GE2GL_OK);
+    auto px = [&](int x, int y) { return &rgba[(size_t(y) * 480 + x) * 4]; };
+    EXPECT_EQ(px(0, 0)[0], 0x80);
+    EXPECT_EQ(px(100, 50)[1], 0xFF);
+    EXPECT_EQ(px(199, 149)[1], 0xFF);
+    EXPECT_EQ(px(200, 149)[0], 0x80);
+    ge2gl_destroy(h);
+
+    // A host built against API 1.0 passes the config without gl_mode / render_scale.
+    ge2gl_config_init(&cfg);
+    cfg.backend = GE2GL_BACKEND_NULL;
+    cfg.api_version = (1u << 16) | 0u;
+    cfg.struct_size = uint32_t(offsetof(ge2gl_config, gl_mode));
+    cfg.gl_mode = 99;  // beyond the 1.0 struct: never read
+    ASSERT_EQ(ge2gl_create(&cfg, &h), GE2GL_OK);
+    ge2gl_destroy(h);
+    cfg.struct_size = uint32_t(sizeof(ge2gl_config)) + 4;
+    EXPECT_EQ(ge2gl_create(&cfg, &h), GE2GL_ERR_VERSION);
 }

@@ -344,6 +344,26 @@ TEST_F(EngineTest, ClutLoadCopiesBlocks) {
     EXPECT_EQ(eng.state().clut[1023], u8(1023 * 7));
 }
 
+// Palette bytes from outside valid memory load as zero, not as what the palette held before
+// (pspautotests gpu/clut/address "Outside VRAM"; ge-reference's bad-access rule still counts it).
+TEST_F(EngineTest, ClutLoadPastValidMemoryLoadsZeros) {
+    for (u32 i = 0; i < 64; ++i) mem.write8(0x08900000 + i, u8(0x80 + i));
+    put(kList, {W(GE_CMD_CBW, 0x080000), W(GE_CMD_CBP, 0x900000), W(GE_CMD_CLOAD, 2), W(GE_CMD_FINISH), W(GE_CMD_END)});
+    runAt(kList);
+    ASSERT_EQ(eng.state().clut[0], 0x80u);
+    // The last 16 bytes of VRAM's mirrors, then 48 bytes past them.
+    for (u32 i = 0; i < 16; ++i) mem.write8(0x047FFFF0 + i, u8(0x11 * (i / 4 + 1)));
+    put(kList, {W(GE_CMD_CBW, 0x040000), W(GE_CMD_CBP, 0x7FFFF0), W(GE_CMD_CLOAD, 2), W(GE_CMD_FINISH), W(GE_CMD_END)});
+    runAt(kList);
+    EXPECT_EQ(eng.state().clut[0], 0x11u);
+    EXPECT_EQ(eng.state().clut[15], 0x44u);
+    for (u32 i = 16; i < 64; ++i) EXPECT_EQ(eng.state().clut[i], 0u) << i;
+    // Entirely past the mirrors: all zero.
+    put(kList, {W(GE_CMD_CBW, 0x040000), W(GE_CMD_CBP, 0x800010), W(GE_CMD_CLOAD, 1), W(GE_CMD_FINISH), W(GE_CMD_END)});
+    runAt(kList);
+    for (u32 i = 0; i < 32; ++i) EXPECT_EQ(eng.state().clut[i], 0u) << i;
+}
+
 TEST_F(EngineTest, TransferPacketIsResolved) {
     put(kList, {W(GE_CMD_XBP1, 0x900000), W(GE_CMD_XBW1, 0x080000 | 512), W(GE_CMD_XBP2, 0x088000),
                 W(GE_CMD_XBW2, 0x040000 | 512), W(GE_CMD_XPOS1, (3 << 10) | 2), W(GE_CMD_XPOS2, (5 << 10) | 4),

@@ -1,4 +1,4 @@
-// Scenes for the reference renderer's state optimizations that change pixels (softmodel/blend.h),
+// Scenes for the reference renderer's state optimizations that change pixels (geometry/reference_rules.h),
 // shared by the software-model and GL tests.
 #pragma once
 #include <vector>
@@ -7,7 +7,7 @@
 
 namespace ge::testscene {
 
-// The skipped alpha test (blend.h referenceSkipsAlphaTest): a 4×4 CLUT4 texture, texels
+// The skipped alpha test (geometry/reference_rules.h referenceSkipsAlphaTest): a 4×4 CLUT4 texture, texels
 // alternating palette entries 0 and 1 (entries 1–15 opaque red), drawn 1:1 as a through-mode rectangle at (0, 0) over a
 // frame cleared to black, with the alpha test GREATER 0 and TFUNC MODULATE RGBA. Entry 1 is opaque
 // red; entry 0 has alpha 0 and colour `entry0`. With `vertexAlpha` 255 and entries whose AND is

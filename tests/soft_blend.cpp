@@ -3,6 +3,7 @@
 // Expected values are computed by hand from ge-reference.md §3.10 and §8.3/§8.4/§8.7/§8.8.
 #include <gtest/gtest.h>
 
+#include "geometry/reference_rules.h"
 #include "hle/pixel_format.h"
 #include "soft_pixel_fixture.h"
 #include "softmodel/blend.h"
@@ -155,7 +156,7 @@ TEST(SoftDither, MatrixAndTruncationPerFormat) {
         PixelRig rig(e.fmt);
         setSdkDither(rig);
         rig.set(GE_CMD_DTE, 1);
-        std::vector<Fragment> fs;
+        std::vector<geo::Fragment> fs;
         for (int y = 0; y < 4; ++y)
             for (int x = 0; x < 4; ++x) {
                 // Drawing at (x + 4, y + 8) uses the same matrix cell as (x, y).
@@ -347,7 +348,7 @@ TEST(SoftClear, NoAlphaIn5650) {
     EXPECT_EQ(rig.pixel(0, 0), 0x1234u);
 }
 
-// The reference renderer's implicit "alpha != 0" test (softmodel/blend.h referenceDropsZeroAlpha,
+// The reference renderer's implicit "alpha != 0" test (geometry/reference_rules.h referenceDropsZeroAlpha,
 // PPSSPP Rasterizer.cpp OPTIMIZED_ALPHATEST_ON): with A = As, B = 1 − As, no depth write and no
 // stencil test, an alpha-0 fragment leaves the pixel alone even though dithering would change it.
 // Values from Monster Hunter 3rd's HUD: 5650 Cd = (24, 53, 23) → (198, 215, 189); at (2, 1) the SDK
@@ -374,34 +375,34 @@ TEST(SoftBlend, ZeroAlphaRuleConditions) {
     PixelRig rig(GE_FORMAT_8888);
     rig.set(GE_CMD_ABE, 1);
     rig.set(GE_CMD_BLEND, 2 | 3 << 4);
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_BLEND, 2 | 10 << 4);  // B = FIXB
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_BLEND, 2 | 3 << 4 | 1 << 8);  // any equation 0–5 counts
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ABE, 0);
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ABE, 1);
 
     // Alpha test: a real one keeps its own function; GEQUAL 0 counts as off.
     rig.set(GE_CMD_ATE, 1);
     rig.set(GE_CMD_ATEST, 6 | 0x10 << 8 | 0xFF << 16);
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ATEST, 7 | 0 << 8 | 0xFF << 16);
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ATE, 0);
 
     // Depth writes and stencil tests turn it off; ZMSK (no write) does not.
     rig.set(GE_CMD_ZTE, 1);
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ZMSK, 1);
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_ZTE, 0);
     rig.set(GE_CMD_STE, 1);
     rig.set(GE_CMD_STEST, 2);  // EQUAL
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_STEST, 1);  // ALWAYS with KEEP everywhere: no effective stencil test
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));
     rig.set(GE_CMD_STE, 0);
 
     // A CLUT texture whose palette has only full alphas cannot give alpha 0 (as the reference
@@ -409,8 +410,8 @@ TEST(SoftBlend, ZeroAlphaRuleConditions) {
     rig.set(GE_CMD_TPF, GE_TFMT_CLUT8);
     rig.set(GE_CMD_CLUT, 3 | 0xFF << 8);
     for (u32 i = 0; i < 256; ++i) writeLE32(rig.st.clut + 4 * i, 0xFF000000u | i);
-    EXPECT_FALSE(referenceDropsZeroAlpha(rig.st, true));
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, false));  // untextured: palette irrelevant
+    EXPECT_FALSE(geo::referenceDropsZeroAlpha(rig.st, true));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, false));  // untextured: palette irrelevant
     writeLE32(rig.st.clut + 4 * 5, 0x00000000u);
-    EXPECT_TRUE(referenceDropsZeroAlpha(rig.st, true));
+    EXPECT_TRUE(geo::referenceDropsZeroAlpha(rig.st, true));
 }

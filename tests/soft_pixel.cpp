@@ -25,15 +25,15 @@ void setupTexel(PixelRig& rig, u32 func, bool tcc, bool dbl) {
     rig.set(GE_CMD_TEC, 10 | 20 << 8 | 255 << 16);
 }
 
-Fragment texFrag(u8 r, u8 g, u8 b, u8 a) {
-    Fragment f = PixelRig::frag(4, 4, r, g, b, a);
+geo::Fragment texFrag(u8 r, u8 g, u8 b, u8 a) {
+    geo::Fragment f = PixelRig::frag(4, 4, r, g, b, a);
     f.s = 0.5f;
     f.t = 0.5f;
     return f;
 }
 
 // Draws one textured fragment with the alpha test set to `func` against `alphaRef`.
-u32 drawWithAlphaTest(PixelRig& rig, const Fragment& f, u32 func, u32 alphaRef) {
+u32 drawWithAlphaTest(PixelRig& rig, const geo::Fragment& f, u32 func, u32 alphaRef) {
     rig.set(GE_CMD_ATE, 1);
     rig.set(GE_CMD_ATEST, func | alphaRef << 8 | 0xFF << 16);
     rig.setPixel(f.x, f.y, kSentinel);
@@ -83,7 +83,7 @@ TEST(SoftTexFunc, EveryFunctionTccAndDoubling) {
         SCOPED_TRACE(::testing::Message() << "func " << c.func << " tcc " << c.tcc << " double " << c.dbl);
         PixelRig rig;
         setupTexel(rig, c.func, c.tcc, c.dbl);
-        const Fragment f = texFrag(c.p[0], c.p[1], c.p[2], c.p[3]);
+        const geo::Fragment f = texFrag(c.p[0], c.p[1], c.p[2], c.p[3]);
         // Alpha EQUAL to the expected Av draws (and shows RGB); NOTEQUAL must not draw.
         EXPECT_EQ(drawWithAlphaTest(rig, f, 2, c.a), rgba(c.r, c.g, c.b, 0x5A));
         EXPECT_EQ(drawWithAlphaTest(rig, f, 3, c.a), kSentinel);
@@ -94,7 +94,7 @@ TEST(SoftTexFunc, SecondaryColourAddedAfterFunctionAndNotDoubled) {
     {
         PixelRig rig;
         setupTexel(rig, 0, false, false);
-        Fragment f = texFrag(100, 150, 250, 60);
+        geo::Fragment f = texFrag(100, 150, 250, 60);
         f.secondary[0] = 5;
         f.secondary[1] = 10;
         f.secondary[2] = 255;
@@ -104,7 +104,7 @@ TEST(SoftTexFunc, SecondaryColourAddedAfterFunctionAndNotDoubled) {
     {
         PixelRig rig;
         setupTexel(rig, 0, false, true);
-        Fragment f = texFrag(100, 150, 250, 60);
+        geo::Fragment f = texFrag(100, 150, 250, 60);
         f.secondary[0] = 5;
         f.secondary[1] = 10;
         rig.draw(f, true);
@@ -115,7 +115,7 @@ TEST(SoftTexFunc, SecondaryColourAddedAfterFunctionAndNotDoubled) {
 TEST(SoftTexFunc, UntexturedIsPrimaryPlusSecondaryAndNeverDoubled) {
     PixelRig rig;
     rig.set(GE_CMD_TFUNC, 1u << 16);  // doubling has no effect without texturing (§8.13)
-    Fragment f = PixelRig::frag(0, 0, 250, 10, 0, 9);
+    geo::Fragment f = PixelRig::frag(0, 0, 250, 10, 0, 9);
     f.secondary[0] = 10;
     f.secondary[1] = 5;
     rig.draw(f, false);
@@ -132,10 +132,10 @@ TEST(SoftFog, FormulaAndEnables) {
     PixelRig rig;
     rig.set(GE_CMD_FGE, 1);
     rig.set(GE_CMD_FC, 0 | 128 << 8 | 255 << 16);
-    Fragment f = PixelRig::frag(0, 0, 200, 50, 30, 0);
+    geo::Fragment f = PixelRig::frag(0, 0, 200, 50, 30, 0);
     f.fog = 100;
-    Fragment none = PixelRig::frag(1, 0, 200, 50, 30, 0);  // f = 255: unchanged
-    Fragment full = PixelRig::frag(2, 0, 200, 50, 30, 0);
+    geo::Fragment none = PixelRig::frag(1, 0, 200, 50, 30, 0);  // f = 255: unchanged
+    geo::Fragment full = PixelRig::frag(2, 0, 200, 50, 30, 0);
     full.fog = 0;
     rig.draw({f, none, full});
     EXPECT_EQ(rig.pixel(0, 0), rgba(79, 98, 167, 0));
@@ -398,7 +398,7 @@ TEST(SoftOrder, ColourTestSeesFoggedColour) {
     rig.set(GE_CMD_CTEST, 2);
     rig.set(GE_CMD_CREF, 0x090909);
     rig.set(GE_CMD_CMSK, 0xFFFFFF);
-    Fragment f = PixelRig::frag(0, 0, 200, 200, 200, 0);
+    geo::Fragment f = PixelRig::frag(0, 0, 200, 200, 200, 0);
     f.fog = 0;
     rig.draw(f);
     EXPECT_EQ(rig.pixel(0, 0), rgba(9, 9, 9, 0));
@@ -422,7 +422,7 @@ TEST(SoftRobustness, FragmentsOutsideBuffersAreDropped) {
     rig.set(GE_CMD_ZTEST, 1);
     PixelState ps = buildPixelState(rig.st, rig.mem, *rig.cache, false);
     EXPECT_EQ(ps.fbMaxY, 1);
-    std::vector<Fragment> fs = {PixelRig::frag(0, 0, 1, 2, 3, 4), PixelRig::frag(63, 0, 1, 2, 3, 4),
+    std::vector<geo::Fragment> fs = {PixelRig::frag(0, 0, 1, 2, 3, 4), PixelRig::frag(63, 0, 1, 2, 3, 4),
                                 PixelRig::frag(64, 0, 1, 2, 3, 4), PixelRig::frag(0, 1, 1, 2, 3, 4),
                                 PixelRig::frag(-1, 0, 1, 2, 3, 4), PixelRig::frag(0, 100000, 1, 2, 3, 4)};
     shadeFragments(ps, fs.data(), fs.size());
@@ -452,10 +452,10 @@ TEST(SoftThreads, DisjointRowsFromSeveralThreadsMatchOneThread) {
         for (int y = 0; y < 64; ++y)
             for (int x = 0; x < 64; ++x) rig.setPixel(x, y, u32(x * 77 + y * 131) * 2246822519u);
     };
-    std::vector<Fragment> rows[4];
+    std::vector<geo::Fragment> rows[4];
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
-            Fragment f = PixelRig::frag(x, y, u8(x * 4), u8(y * 4), u8(x ^ y), u8(x + y), u16(x * y));
+            geo::Fragment f = PixelRig::frag(x, y, u8(x * 4), u8(y * 4), u8(x ^ y), u8(x + y), u16(x * y));
             f.s = float(x) / 37.0f;
             f.t = float(y) / 23.0f;
             rows[y % 4].push_back(f);

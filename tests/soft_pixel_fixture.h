@@ -45,8 +45,8 @@ struct PixelRig {
     u16 depth(int x, int y) const { return mem.read16(kZb + (u32(y) * kStride + u32(x)) * 2); }
     void setDepth(int x, int y, u16 z) { mem.write16(kZb + (u32(y) * kStride + u32(x)) * 2, z); }
 
-    static Fragment frag(int x, int y, u8 r, u8 g, u8 b, u8 a, u16 z = 0) {
-        Fragment f;
+    static geo::Fragment frag(int x, int y, u8 r, u8 g, u8 b, u8 a, u16 z = 0) {
+        geo::Fragment f;
         f.x = x;
         f.y = y;
         f.z = z;
@@ -57,11 +57,11 @@ struct PixelRig {
         return f;
     }
 
-    void draw(const Fragment& f, bool texture = false) {
+    void draw(const geo::Fragment& f, bool texture = false) {
         PixelState ps = buildPixelState(st, mem, *cache, texture);
         shadeFragments(ps, &f, 1);
     }
-    void draw(const std::vector<Fragment>& fs, bool texture = false) {
+    void draw(const std::vector<geo::Fragment>& fs, bool texture = false) {
         PixelState ps = buildPixelState(st, mem, *cache, texture);
         shadeFragments(ps, fs.data(), fs.size());
     }

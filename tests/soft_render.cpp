@@ -257,7 +257,7 @@ TEST(SoftRender, NearClippedFanFollowsTheReferenceVertexOrder) {
 }
 
 // The reference drops an alpha test GREATER 0 for a CLUT texture whose used entries AND to a
-// non-zero value when every vertex alpha is 255 (blend.h referenceSkipsAlphaTest).
+// non-zero value when every vertex alpha is 255 (geometry/reference_rules.h referenceSkipsAlphaTest).
 TEST(SoftRender, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
     struct Case {
         u32 entry0;
@@ -338,9 +338,9 @@ void redGreenTexture(Scene& s) {
 TEST(SoftRender, StripQuadDrawnAsRectangle) {
     // The reference renderer (PPSSPP's) draws a 4-vertex strip that forms an axis-aligned
     // rectangle with matching UVs and one colour as a RECTANGLES primitive, sampled at pixel
-    // centres; triangles sample 1/16 pixel earlier (raster.cpp kTriSample). Bilinear 1:1 mapping
-    // of a texture whose left half is red and right half green shows which path ran: at the
-    // column where green starts a rectangle gives pure green, triangles blend 1/16 of red in.
+    // centres; triangles sample 1/16 pixel earlier (geometry/raster.cpp kTriSample). Bilinear 1:1
+    // mapping of a texture whose left half is red and right half green shows which path ran: at
+    // the column where green starts a rectangle gives pure green, triangles blend 1/16 of red in.
     auto build = [](Scene& s, u32 cornerColor) {
         redGreenTexture(s);
         constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;

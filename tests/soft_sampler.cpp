@@ -31,7 +31,7 @@ u32 drawSample(PixelRig& rig, float s, float t, float lod = 0, float w = 1) {
     rig.set(GE_CMD_TME, 1);
     rig.set(GE_CMD_TFUNC, 3 | 1 << 8);
     // No stencil test: the alpha byte keeps its stored value, the RGB bits show the texel.
-    Fragment f = PixelRig::frag(0, 0, 255, 255, 255, 255);
+    geo::Fragment f = PixelRig::frag(0, 0, 255, 255, 255, 255);
     f.s = s;
     f.t = t;
     f.lod = lod;
@@ -258,7 +258,7 @@ TEST(SoftTextureCache, DrawingIntoTheTextureIsSeen) {
     rig.texture8888(0, texAddr, 0, 0, {rgba(1, 1, 1, 255)});
     rig.set(GE_CMD_TME, 1);
     rig.set(GE_CMD_TFUNC, 3 | 1 << 8);
-    Fragment f = PixelRig::frag(0, 0, 0, 0, 0, 0);
+    geo::Fragment f = PixelRig::frag(0, 0, 0, 0, 0, 0);
     f.s = f.t = 0.5f;
     rig.draw(f, true);
     EXPECT_EQ(rig.pixel(0, 0) & 0xFFFFFF, 0x010101u);

@@ -11,32 +11,18 @@
 
 #include "hle/dump/player.h"
 #include "tools/lib/image.h"
+#include "tools/lib/render.h"
+#include "tests/tools_cli_run.h"
 
 using namespace ge;
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int code = -1;
-    std::string out;
-};
-
-std::string cli() { return std::string(GE2GL_BINARY_DIR) + "/ge2gl"; }
+using clitest::CliRun;
 std::string scene(const char* name) { return std::string(GE2GL_SOURCE_DIR) + "/dumps/" + name + ".ppdmp"; }
 
-CliRun run(const std::string& args, bool withStderr = true) {
-    CliRun r;
-    std::string cmd = cli() + " " + args + (withStderr ? " 2>&1" : " 2>/dev/null");
-    FILE* p = popen(cmd.c_str(), "r");
-    if (!p) return r;
-    std::array<char, 4096> buf;
-    size_t n;
-    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.out.append(buf.data(), n);
-    int status = pclose(p);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
+CliRun run(const std::string& args, bool withStderr = true) { return clitest::runCli(args, withStderr); }
 
 fs::path tmpDir() {
     fs::path d = fs::temp_directory_path() / ("ge2gl_cli_test_" + std::to_string(::getpid()));
@@ -88,6 +74,39 @@ TEST(Cli, RenderWritesPngDepthAndVram) {
     size_t nonBlack = 0;
     for (u32 p : img.rgba) nonBlack += (p & 0xFFFFFF) != 0;
     EXPECT_GT(nonBlack, 1000u);
+    fs::remove_all(t);
+}
+
+// GL hardware mode at render scale 2: the PNG is 960x544; compare box-downsamples to 480x272;
+// bench with the null GL prints the CPU time per draw. Skipped where no GL context can be made.
+TEST(Cli, HardwareModeRendersAtScaleAndBenchesWithNullGl) {
+    fs::path t = tmpDir();
+    CliRun r = run("render " + scene("render_to_texture") + " --backend gl --gl-mode hw --scale 2 -o " + (t / "s.png").string());
+    if (r.code != 0 && r.out.find("GL") != std::string::npos && r.out.find("OSMesa") != std::string::npos)
+        GTEST_SKIP() << r.out;
+    ASSERT_EQ(r.code, 0) << r.out;
+    tools::Image img;
+    std::string err;
+    ASSERT_TRUE(tools::readImage((t / "s.png").string(), img, err)) << err;
+    EXPECT_EQ(img.width, 960);
+    EXPECT_EQ(img.height, 544);
+    CliRun c = run("compare " + scene("render_to_texture") + " --backend gl --gl-mode hw --scale 2 --ref-backend soft");
+    EXPECT_EQ(c.code, 0) << c.out;
+    EXPECT_NE(c.out.find("summary: 1 dumps, 1 rendered"), std::string::npos) << c.out;
+    CliRun b = run("bench " + scene("render_to_texture") + " --backend gl --gl-mode hw --null-gl --repeat 1");
+    EXPECT_EQ(b.code, 0) << b.out;
+    EXPECT_NE(b.out.find("us/draw"), std::string::npos) << b.out;
+    EXPECT_NE(b.out.find("translator CPU per draw"), std::string::npos) << b.out;
+    // --warm reuses one backend per dump (and replays into it again): same draws, no error.
+    CliRun w = run("bench " + scene("lit_textured_skinned") + " --backend gl --gl-mode hw --gl-vertices gpu --null-gl --warm --repeat 2");
+    EXPECT_EQ(w.code, 0) << w.out;
+    EXPECT_NE(w.out.find("translator CPU per draw"), std::string::npos) << w.out;
+    CliRun ws = run("bench " + scene("lit_textured_skinned") + " --backend soft --warm --repeat 2");
+    EXPECT_EQ(ws.code, 0) << ws.out;
+    // Scale needs the hardware mode.
+    CliRun e = run("render " + scene("render_to_texture") + " --backend gl --scale 2 -o " + (t / "e.png").string());
+    EXPECT_EQ(e.code, 1);
+    EXPECT_NE(e.out.find("--gl-mode hw"), std::string::npos) << e.out;
     fs::remove_all(t);
 }
 
@@ -247,4 +266,29 @@ TEST(ImageIo, DamagedPngsAreRefusedWithAMessage) {
     EXPECT_FALSE(tools::readImage((t / "bad.png").string(), img, err));
     EXPECT_FALSE(tools::readImage((t / "missing.png").string(), img, err));
     EXPECT_NE(err.find("missing.png"), std::string::npos);
+}
+
+// bench --warm's reuse of one backend (tools/lib/render.h renderDump `backend`): a second replay
+// into the same backend and cleared memory gives the frame a fresh backend gives.
+TEST(RenderReuse, WarmReplayDrawsTheSameFrame) {
+    dump::Dump d;
+    std::string err;
+    ASSERT_TRUE(dump::loadDump(scene("render_to_texture"), d, err)) << err;
+    for (const char* mode : {"soft", "exact", "hw"}) {
+        tools::RenderOptions o;
+        o.backend = std::string(mode) == "soft" ? "soft" : "gl";
+        o.glMode = std::string(mode) == "hw" ? "hw" : "exact";
+        o.glVertices = "gpu";
+        tools::RenderOutput fresh, first, second;
+        if (!tools::renderDump(d, o, fresh, err)) {
+            if (o.backend == "gl") GTEST_SKIP() << err;
+            FAIL() << err;
+        }
+        Memory mem;
+        std::unique_ptr<Renderer> be;
+        ASSERT_TRUE(tools::renderDump(d, o, first, err, nullptr, nullptr, &mem, &be)) << err;
+        ASSERT_TRUE(tools::renderDump(d, o, second, err, nullptr, nullptr, &mem, &be)) << err;
+        EXPECT_EQ(tools::mseRGB(fresh.frame, first.frame), 0.0) << mode;
+        EXPECT_EQ(tools::mseRGB(fresh.frame, second.frame), 0.0) << mode;
+    }
 }

@@ -50,9 +50,40 @@ void registerDir(const fs::path& dir, const char* ext) {
     }
 }
 
+#ifdef GE2GL_LOAD_PROBE
+// A host loading libge2gl without asking for a headless GL context (issue 11: at most 20 ms, and no
+// OSMesa/EGL/LLVM mapped): ge2gl_load_probe in a fresh process per iteration; the counter
+// load_ms is the probe's own dlopen + create + destroy time, real time includes the spawn.
+void libraryLoadBench(benchmark::State& state) {
+    double sum = 0;
+    int n = 0, glMapped = 0;
+    for (auto _ : state) {
+        const std::string cmd = std::string("'") + GE2GL_LOAD_PROBE + "' '" + GE2GL_LIBRARY + "'";
+        FILE* p = popen(cmd.c_str(), "r");
+        char line[256] = {};
+        const bool got = p && std::fgets(line, sizeof line, p);
+        if (p) pclose(p);
+        double ms = 0;
+        int os = 0, egl = 0, llvm = 0;
+        if (!got || std::sscanf(line, "load_probe: load_ms=%lf osmesa=%d egl=%d llvm=%d", &ms, &os, &egl, &llvm) != 4) {
+            state.SkipWithError("ge2gl_load_probe failed");
+            break;
+        }
+        sum += ms;
+        ++n;
+        glMapped += os + egl + llvm;
+    }
+    if (n) state.counters["load_ms"] = sum / n;
+    state.counters["gl_libs_mapped"] = glMapped;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
+#ifdef GE2GL_LOAD_PROBE
+    benchmark::RegisterBenchmark("LibraryLoad", libraryLoadBench)->Unit(benchmark::kMillisecond)->UseRealTime();
+#endif
     registerDir(fs::path(GE2GL_SOURCE_DIR) / "dumps", ".ppdmp");
     registerDir(fs::path(GE2GL_FRAMETESTS_DIR) / "dumps", ".zip");
     benchmark::Initialize(&argc, argv);

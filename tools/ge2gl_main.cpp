@@ -1,4 +1,4 @@
-// The ge2gl command-line tool: info, disasm, render, compare, bench.
+// The ge2gl command-line tool: info, disasm, render, compare, merge, report, bench, blame, bisect, fuzz.
 // Errors are one line on stderr and a non-zero exit.
 #include <CLI/CLI.hpp>
 
@@ -16,8 +16,14 @@
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
 #include "hle/ge_time.h"
+#include "tools/lib/bisect.h"
+#include "tools/lib/blame.h"
 #include "tools/lib/image.h"
 #include "tools/lib/render.h"
+#include "tools/lib/batch.h"
+#include "tools/lib/draw_select.h"
+#include "tools/lib/difffuzz.h"
+#include "tools/lib/report.h"
 
 using namespace ge;
 namespace fs = std::filesystem;
@@ -123,7 +129,7 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
     if (!tools::renderDumpFile(path, opt, out, err, vramOut.empty() ? nullptr : &vram, depthOut.empty() ? nullptr : &depth))
         return fail(err);
     if (!out.replay.warning.empty()) std::fprintf(stderr, "ge2gl: warning: %s\n", out.replay.warning.c_str());
-    if (!tools::writePng(outPng, out.frame, err)) return fail(err);
+    if (!tools::writePng(outPng, out.frameScaled.rgba.empty() ? out.frame : out.frameScaled, err)) return fail(err);
     if (!depthOut.empty()) {
         std::vector<u8> buf(8 + depth.size() * 2);
         writeLE32(buf.data(), 480);
@@ -149,121 +155,61 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
     return 0;
 }
 
-std::string jsonEscape(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        if (c == '"' || c == '\\') o += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) continue;
-        o += c;
-    }
-    return o;
-}
+// compare and merge: tools/lib/batch.cpp (runCompare, runMerge; JSON as tools::jsonString).
 
-int cmdCompare(const std::vector<std::string>& files, const tools::RenderOptions& opt, const std::string& refDir,
-               const std::string& refBackend, double maxMse, const std::string& jsonPath, const std::string& diffDir) {
-    if (refDir.empty() == refBackend.empty()) return fail("compare needs exactly one of --ref-dir or --ref-backend");
-    if (!diffDir.empty()) {
-        std::error_code ec;
-        fs::create_directories(diffDir, ec);
-    }
-    struct Row {
-        std::string name, error;
-        double mse = -1, psnr = 0, seconds = 0;
-    };
-    std::vector<Row> rows;
-    int failures = 0;
-    std::printf("%-60s %12s %9s %8s\n", "dump", "MSE", "PSNR", "time s");
-    for (const auto& path : files) {
-        Row row;
-        row.name = tools::dumpName(path);
-        tools::RenderOutput out;
-        std::string err;
-        tools::Image ref;
-        if (!tools::renderDumpFile(path, opt, out, err)) {
-            row.error = err;
-        } else if (!refDir.empty()) {
-            if (!tools::readImage((fs::path(refDir) / (row.name + "-soft.png")).string(), ref, err)) row.error = err;
-        } else {
-            tools::RenderOptions ro = opt;
-            ro.backend = refBackend;
-            tools::RenderOutput refOut;
-            if (!tools::renderDumpFile(path, ro, refOut, err)) row.error = "reference: " + err;
-            else ref = refOut.frame;
-        }
-        if (row.error.empty()) {
-            row.mse = tools::mseRGB(out.frame, ref);
-            if (row.mse < 0) row.error = "reference image smaller than 480x272";
-            row.psnr = tools::psnrFromMse(row.mse);
-            row.seconds = out.seconds;
-            if (!diffDir.empty() && row.mse > 0) {
-                std::string e2;
-                tools::writePng((fs::path(diffDir) / (row.name + "-diff.png")).string(), tools::diffImage(out.frame, ref), e2);
-                tools::writePng((fs::path(diffDir) / (row.name + "-" + opt.backend + ".png")).string(), out.frame, e2);
-            }
-        }
-        if (!row.error.empty()) {
-            ++failures;
-            std::printf("%-60s %12s  %s\n", row.name.c_str(), "ERROR", row.error.c_str());
-        } else {
-            if (maxMse >= 0 && row.mse > maxMse) ++failures;
-            std::printf("%-60s %12.4f %9.2f %8.3f\n", row.name.c_str(), row.mse, row.psnr, row.seconds);
-        }
-        std::fflush(stdout);
-        rows.push_back(row);
-    }
-    std::vector<double> mses, times;
-    int within01 = 0, within10 = 0;
-    for (const Row& r : rows)
-        if (r.error.empty()) {
-            mses.push_back(r.mse);
-            times.push_back(r.seconds);
-            within01 += r.mse <= 0.1;
-            within10 += r.mse <= 10;
-        }
-    auto median = [](std::vector<double> v) {
-        if (v.empty()) return 0.0;
-        std::sort(v.begin(), v.end());
-        size_t n = v.size();
-        return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
-    };
-    std::printf("summary: %zu dumps, %zu rendered, %d within MSE 0.1, %d within MSE 10, median MSE %.4f, median time %.3f s\n",
-                rows.size(), mses.size(), within01, within10, median(mses), median(times));
-    if (!jsonPath.empty()) {
-        std::ofstream j(jsonPath);
-        j << "{\n  \"backend\": \"" << opt.backend << "\",\n  \"results\": [\n";
-        for (size_t i = 0; i < rows.size(); ++i) {
-            const Row& r = rows[i];
-            j << "    {\"name\": \"" << jsonEscape(r.name) << "\"";
-            if (r.error.empty()) j << ", \"mse\": " << r.mse << ", \"psnr\": " << (std::isinf(r.psnr) ? 999.0 : r.psnr) << ", \"seconds\": " << r.seconds;
-            else j << ", \"error\": \"" << jsonEscape(r.error) << "\"";
-            j << "}" << (i + 1 < rows.size() ? "," : "") << "\n";
-        }
-        j << "  ],\n  \"median_mse\": " << median(mses) << ",\n  \"median_seconds\": " << median(times)
-          << ",\n  \"within_0_1\": " << within01 << ",\n  \"within_10\": " << within10 << "\n}\n";
-    }
-    return failures ? 1 : 0;
-}
-
-int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& opt, int repeat) {
-    std::printf("%-60s %10s %10s\n", "dump", "median s", "min s");
-    std::vector<double> medians;
+int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& opt, int repeat, bool warm) {
+    // Per draw: the median replay time over the dump's draws. With the null GL, also the same
+    // replay on the null backend (engine and replay alone, alternated run by run) and the
+    // difference per draw: the translator's own CPU cost, GL driver excluded.
+    const bool nullGl = opt.backend == "gl" && opt.glContext == "null";
+    std::printf("%-60s %10s %10s %8s %10s", "dump", "median s", "min s", "draws", "us/draw");
+    if (nullGl) std::printf(" %12s %14s", "engine s", "transl us/draw");
+    std::printf("\n");
+    std::vector<double> medians, perDraw;
     Memory mem;  // one emulated memory for every run, cleared before each (Memory::clear)
+    tools::RenderOptions engineOnly = opt;
+    engineOnly.backend = "null";
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
     for (const auto& path : files) {
         dump::Dump d;
         std::string err;
         if (!dump::loadDump(path, d, err)) return fail(err);
-        std::vector<double> t;
-        for (int i = 0; i < repeat; ++i) {
+        std::vector<double> t, e;
+        u64 draws = 0;
+        // --warm: one backend per dump for all runs, after an untimed first run (the steady state
+        // of an emulator's next frame: textures decoded, programs compiled, targets allocated).
+        std::unique_ptr<Renderer> be, engineBe;
+        std::unique_ptr<Renderer>* keep = warm ? &be : nullptr;
+        std::unique_ptr<Renderer>* keepEngine = warm ? &engineBe : nullptr;
+        for (int i = warm ? -1 : 0; i < repeat; ++i) {
             tools::RenderOutput out;
-            if (!tools::renderDump(d, opt, out, err, nullptr, nullptr, &mem)) return fail(path + ": " + err);
+            if (!tools::renderDump(d, opt, out, err, nullptr, nullptr, &mem, keep)) return fail(path + ": " + err);
+            if (nullGl) {
+                tools::RenderOutput eo;
+                if (!tools::renderDump(d, engineOnly, eo, err, nullptr, nullptr, &mem, keepEngine))
+                    return fail(path + ": " + err);
+                if (i >= 0) e.push_back(eo.seconds);
+            }
+            if (i < 0) continue;
             t.push_back(out.seconds);
+            draws = out.replay.draws;
         }
-        std::sort(t.begin(), t.end());
-        medians.push_back(t[t.size() / 2]);
-        std::printf("%-60s %10.4f %10.4f\n", tools::dumpName(path).c_str(), t[t.size() / 2], t[0]);
+        const double m = median(t);
+        medians.push_back(m);
+        std::printf("%-60s %10.4f %10.4f %8llu %10.2f", tools::dumpName(path).c_str(), m,
+                    *std::min_element(t.begin(), t.end()), (unsigned long long)draws, draws ? m * 1e6 / double(draws) : 0.0);
+        if (nullGl) {
+            const double me = median(e), pd = draws ? (m - me) * 1e6 / double(draws) : 0.0;
+            perDraw.push_back(pd);
+            std::printf(" %12.4f %14.2f", me, pd);
+        }
+        std::printf("\n");
     }
-    std::sort(medians.begin(), medians.end());
-    if (!medians.empty()) std::printf("median over dumps: %.4f s (replay only, dump already loaded)\n", medians[medians.size() / 2]);
+    if (!medians.empty()) std::printf("median over dumps: %.4f s (replay only, dump already loaded)\n", median(medians));
+    if (!perDraw.empty()) std::printf("translator CPU per draw, median over dumps: %.2f us\n", median(perDraw));
     return 0;
 }
 
@@ -287,10 +233,32 @@ int main(int argc, char** argv) {
             ->check(CLI::Range(0.0, 1e7));
         sc->add_option("--backend", ropt.backend, "soft | gl | null")->check(CLI::IsMember({"soft", "gl", "null"}));
         sc->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
-        sc->add_option("--context", ropt.glContext, "GL context: osmesa | egl");
+        sc->add_option("--context", ropt.glContext,
+                       "GL context: osmesa | egl | null (GL calls do nothing: the translator's CPU cost alone)")
+            ->check(CLI::IsMember({"osmesa", "egl", "null"}));
         sc->add_flag("--gl-baseline", ropt.glBaseline, "GL: force the GL 3.3 baseline paths");
+        sc->add_option("--gl-mode", ropt.glMode,
+                       "GL: exact (the software model's rasteriser arithmetic per pixel, 1x; default) | hw "
+                       "(native GL rasterisation, render scale)")
+            ->check(CLI::IsMember({"exact", "hw"}));
+        sc->add_option("--scale", ropt.scale,
+                       "GL hw: render scale 1-8 (render writes 480N x 272N; compare box-downsamples to 480x272)")
+            ->check(CLI::Range(1, 8));
+        sc->add_option("--gl-vertices", ropt.glVertices,
+                       "GL hw: where vertices are transformed and lit: gpu (generated vertex shaders) | cpu | auto "
+                       "(default: cpu on a software rasteriser such as llvmpipe, else gpu)")
+            ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
         sc->add_option("--dump-shaders", ropt.shaderDumpDir, "GL: write generated shaders to DIR");
         sc->add_option("--program-cache", ropt.programCacheDir, "GL: on-disk program binary cache DIR");
+    };
+    // --skip / --only (render, compare, bench): tools/lib/draw_select.h.
+    std::optional<std::string> skipDraws, onlyDraws;
+    auto addDrawSelectOpts = [&](CLI::App* sc) {
+        sc->add_option_function<std::string>("--skip", [&](const std::string& v) { skipDraws = v; },
+                                              "leave these draws out: comma-separated numbers and ranges such as "
+                                              "3,10-12, draws numbered from 1 as --replay-end counts them");
+        sc->add_option_function<std::string>("--only", [&](const std::string& v) { onlyDraws = v; },
+                                              "draw only these draws (same syntax; with --skip, these less the skipped)");
     };
 
     std::vector<std::string> infoFiles;
@@ -305,12 +273,15 @@ int main(int argc, char** argv) {
     bool stats = false;
     auto* render = app.add_subcommand("render", "replay a dump and write the displayed frame as an image");
     render->add_option("DUMP", renderFile)->required();
-    render->add_option("-o,--output", outPng, "output image, 480x272 (.png; other extensions through OpenImageIO)")->required();
+    render->add_option("-o,--output", outPng,
+                       "output image, 480x272 (480N x 272N with --scale N; .png, other extensions through OpenImageIO)")
+        ->required();
     render->add_option("--depth-out", depthOut, "write u32 width, u32 height, u16 depth per pixel");
     render->add_option("--vram-out", vramOut, "write the 2 MiB of VRAM after the frame");
     render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
     render->add_flag("--stats", stats, "print counters");
     addBackendOpts(render);
+    addDrawSelectOpts(render);
 
     std::vector<std::string> cmpFiles;
     std::string refDir, refBackend, jsonPath, diffDir;
@@ -320,17 +291,112 @@ int main(int argc, char** argv) {
     compare->add_option("--ref-dir", refDir, "folder with NAME-soft.png references");
     compare->add_option("--ref-backend", refBackend, "compare against another backend's render instead");
     compare->add_option("--max-mse", maxMse, "non-zero exit when any dump exceeds this MSE")->check(CLI::Range(0.0, 65025.0));
-    compare->add_option("--json", jsonPath, "write results as JSON");
+    compare->add_option("--json", jsonPath, "write results as JSON (schema: tools/lib/batch.h)");
+    std::string shardText;
+    bool jsonNoTimes = false;
+    auto* shardOpt = compare->add_option("--shard", shardText,
+                        "i/n: run only shard i of n (dumps in name order, every n-th from the i-th); join the "
+                        "shards' --json files with ge2gl merge");
+    compare->add_flag("--json-no-times", jsonNoTimes, "leave the run times out of the JSON (same file every run)");
     compare->add_option("--diff-dir", diffDir, "write difference pictures here");
     compare->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
     addBackendOpts(compare);
+    addDrawSelectOpts(compare);
 
     std::vector<std::string> benchFiles;
     int repeat = 3;
     auto* bench = app.add_subcommand("bench", "time the replay of dumps (median of --repeat runs)");
     bench->add_option("DUMP", benchFiles)->required();
     bench->add_option("--repeat", repeat, "runs per dump")->check(CLI::Range(1, 1000));
+    bool nullGl = false, warm = false;
+    bench->add_flag("--null-gl", nullGl, "GL: replay with a GL whose calls do nothing (same as --context null)");
+    bench->add_flag("--warm", warm,
+                    "one backend per dump for every run, after an untimed first run: the steady-state cost of a "
+                    "frame (textures decoded, programs compiled), as in an emulator");
     addBackendOpts(bench);
+    addDrawSelectOpts(bench);
+
+    // blame and bisect (issue 15): tools/lib/blame.h, tools/lib/bisect.h.
+    std::string blameFile;
+    tools::BlameOptions blameOpt;
+    auto* blame = app.add_subcommand("blame", "which draws own the pixels that differ from a reference, ranked by "
+                                              "their share of the squared error");
+    blame->add_option("DUMP", blameFile)->required();
+    blame->add_option("--ref", blameOpt.refPng, "reference picture (480x272 PNG, e.g. a frametest's NAME-soft.png)");
+    blame->add_option("--ref-backend", blameOpt.refBackend, "reference: the same dump rendered by this backend")
+        ->check(CLI::IsMember({"soft", "gl", "null"}));
+    blame->add_option("--top", blameOpt.top, "draws to list (default 10)")->check(CLI::Range(0, 100000));
+    blame->add_option("-o,--output", blameOpt.picturePath,
+                      "picture: the render dimmed, the top draws' differing pixels tinted and outlined, one colour "
+                      "each (others white)");
+    blame->add_option("--json", blameOpt.jsonPath, "write the ranking as JSON");
+    blame->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+    addBackendOpts(blame);
+
+    std::string bisectFile;
+    tools::BisectOptions bisectOpt;
+    auto* bisect = app.add_subcommand("bisect", "the first draw after which two replays differ (one lockstep replay: "
+                                                "DUMP on --backend vs --ref-backend, or vs --ref-dump on --backend)");
+    bisect->add_option("DUMP", bisectFile)->required();
+    bisect->add_option("--ref-backend", bisectOpt.refBackend, "other side: the same dump on this backend")
+        ->check(CLI::IsMember({"soft", "gl", "null"}));
+    bisect->add_option("--ref-dump", bisectOpt.refDumpPath, "other side: this dump on --backend");
+    bisect->add_flag("--ignore-depth", bisectOpt.ignoreDepth, "compare colour only (default: colour and depth)");
+    bisect->add_flag("--all-vram", bisectOpt.allVram,
+                     "compare all 2 MiB of VRAM byte for byte after each draw (default: the draw's target colour and "
+                     "depth inside its scissor)");
+    bisect->add_option("--tolerance", bisectOpt.tolerance, "per-channel colour difference allowed (0-255, default 0)")
+        ->check(CLI::Range(0, 255));
+    bisect->add_option("--json", bisectOpt.jsonPath, "write the result as JSON");
+    bisect->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+    addBackendOpts(bisect);
+
+    std::vector<std::string> mergeFiles;
+    std::string mergeOut;
+    tools::FuzzOptions fuzzOpt;
+    auto* fuzz = app.add_subcommand("fuzz", "differential fuzzer: random valid GE scenes rendered by --backend (default "
+                                            "gl) and --ref-backend, compared exactly; failing cases minimised");
+    fuzz->add_option("--ref-backend", fuzzOpt.refBackend, "reference backend (default soft)")
+        ->check(CLI::IsMember({"soft", "gl", "null"}));
+    fuzz->add_option("--seed", fuzzOpt.seed, "first seed (case i uses seed + i; default 1)");
+    fuzz->add_option("--count", fuzzOpt.count, "cases (default 100)")->check(wholeNumber(u64(1) << 40));
+    fuzz->add_option("--out", fuzzOpt.outDir, "write minimised failing cases as DIR/case-SEED.ppdmp");
+    fuzz->add_option("--json", fuzzOpt.jsonPath, "write the summary and the failing seeds as JSON");
+    fuzz->add_option("--minimise-tries", fuzzOpt.minimiseTries, "renders spent minimising one failing case (default 300)")
+        ->check(CLI::Range(0, 1000000));
+    fuzz->add_flag("--rgb-only", fuzzOpt.rgbOnly, "ignore the alpha/stencil bits of the colour buffer");
+    fuzz->add_flag("--depth", fuzzOpt.compareDepth, "also compare the depth buffer");
+    fuzz->add_option("--max-mse", fuzzOpt.maxMse,
+                     "diverge only when the frames' RGB MSE exceeds this (a pair that is not bit-exact: "
+                     "--gl-mode hw against soft, docs/accuracy.md; default: exact)")
+        ->check(CLI::Range(0.0, 65025.0));
+    fuzz->add_flag("--quiet", fuzzOpt.quiet, "summary only");
+    addBackendOpts(fuzz);
+    addDrawSelectOpts(fuzz);  // fuzz: --skip/--only act on the --ref-backend side only (forces divergences)
+
+    auto* merge = app.add_subcommand("merge", "join the --json files of compare --shard i/n runs into the JSON one "
+                                              "unsharded run writes; missing or duplicate shards are errors");
+    merge->add_option("JSON", mergeFiles)->required();
+    merge->add_option("-o,--output", mergeOut, "merged JSON file")->required();
+
+    tools::ReportArgs reportArgs;
+    auto* report = app.add_subcommand("report", "a static HTML page (no server, no network) of compare --json results: "
+                                                "per dump the reference, render, heat map and blame table; sortable "
+                                                "summary; before/after with --before");
+    report->add_option("JSON", reportArgs.runFiles, "compare --json file of the run, or the files of all its shards")
+        ->required();
+    report->add_option("-o,--output", reportArgs.outDir, "folder to write index.html and img/ into")->required();
+    report->add_option("--before", reportArgs.beforeFiles,
+                       "compare --json file of an earlier run (repeat for its shards): which dumps got better or worse")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    report->add_option("--title", reportArgs.title, "page title");
+    report->add_option("--top", reportArgs.top, "blame rows per dump (default 10)")->check(CLI::Range(1, 1000));
+    report->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
+    report->add_option("--context", ropt.glContext, "GL context for a gl run: osmesa | egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    report->add_option("--replay-timing", replayTiming, "as given to compare (default ppsspp)")
+        ->check(CLI::IsMember({"ppsspp", "eager"}));
 
     try {
         app.parse(argc, argv);
@@ -340,10 +406,36 @@ int main(int argc, char** argv) {
         return 2;
     }
     dump::parseReplayTiming(replayTiming, ropt.replayTiming);
+    if (nullGl) ropt.glContext = "null";
+    if (ropt.scale > 1 && (ropt.backend != "gl" || ropt.glMode != "hw"))
+        return fail("--scale above 1 needs --backend gl --gl-mode hw");
+    tools::Shard shard;
+    std::string optErr;  // usage errors: exit 2, as CLI11's
+    if (shardOpt->count() && !tools::parseShard(shardText, shard, optErr)) optErr = "--shard '" + shardText + "': " + optErr;
+    if (!optErr.empty() || !tools::makeDrawFilter(skipDraws, onlyDraws, ropt.keepDraw, optErr)) {
+        std::fprintf(stderr, "ge2gl: %s\n", optErr.c_str());
+        return 2;
+    }
     if (*info) return cmdInfo(infoFiles);
     if (*disasm) return cmdDisasm(disasmFile);
     if (*render) return cmdRender(renderFile, ropt, outPng, depthOut, vramOut, stats);
-    if (*compare) return cmdCompare(cmpFiles, ropt, refDir, refBackend, maxMse, jsonPath, diffDir);
-    if (*bench) return cmdBench(benchFiles, ropt, repeat);
+    if (*compare)
+        return tools::runCompare({cmpFiles, ropt, refDir, refBackend, jsonPath, diffDir, maxMse, shardOpt->count() > 0, shard, !jsonNoTimes});
+    if (*merge) return tools::runMerge(mergeFiles, mergeOut);
+    if (*report) {
+        reportArgs.render = ropt;
+        return tools::runReport(reportArgs);
+    }
+    if (*bench) return cmdBench(benchFiles, ropt, repeat, warm);
+    if (*blame) return tools::runBlameCommand(blameFile, ropt, blameOpt);
+    if (*bisect) return tools::runBisectCommand(bisectFile, ropt, bisectOpt);
+    if (*fuzz) {
+        fuzzOpt.render = ropt;
+        fuzzOpt.render.keepDraw = nullptr;
+        fuzzOpt.refKeepDraw = ropt.keepDraw;
+        fuzzOpt.backend = fuzz->count("--backend") ? ropt.backend : "gl";
+        if (!fuzz->count("--threads")) fuzzOpt.render.threads = 1;  // tiny scenes: threads cost more than they give
+        return tools::runFuzzCommand(fuzzOpt);
+    }
     return 0;
 }

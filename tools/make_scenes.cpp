@@ -412,8 +412,10 @@ void sceneLitTexturedSkinned(ListBuilder& b) {
     b.lightColor(1, LIGHT_SPECULAR, rgba(255, 160, 120));
     b.lightAtt(1, 0.6f, 0.3f, 0.15f);
 
+    // LD points from the lit floor back toward the light (a PSP's sign, pspautotests
+    // gpu/commands/light: cos = LD·(light − vertex); the manual's 9-4 reads the other way).
     const float spotPos[3] = {-1.6f, 3.f, 0.6f};
-    const float spotDir[3] = {0.35f, -1.f, -0.15f};
+    const float spotDir[3] = {-0.35f, 1.f, 0.15f};
     b.light(2, 2, 0, spotPos);
     b.lightColor(2, LIGHT_AMBIENT, rgba(0, 0, 0));
     b.lightColor(2, LIGHT_DIFFUSE, rgba(40, 220, 255));

@@ -3,6 +3,6 @@
 #   include(${CMAKE_CURRENT_SOURCE_DIR}/scenes.cmake)
 # Regenerate the committed dumps with:  <build>/make_scenes   (or --out DIR)
 add_executable(make_scenes ${CMAKE_CURRENT_LIST_DIR}/make_scenes.cpp)
-set_target_properties(make_scenes PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR})
+set_target_properties(make_scenes PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR})
 target_link_libraries(make_scenes PRIVATE ge_hle)
-target_compile_definitions(make_scenes PRIVATE GE2GL_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+target_compile_definitions(make_scenes PRIVATE GE2GL_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

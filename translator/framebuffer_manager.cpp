@@ -5,6 +5,8 @@
 #include <cstring>
 
 #include "hle/pixel_format.h"
+#include "shadergen/shader_keys.h"
+#include "translator/gl_util.h"
 
 namespace ge::gl {
 
@@ -23,16 +25,47 @@ const char* const kDepthVs =
     "  vec2 p = vec2(gl_VertexID == 1 ? 3.0 : -1.0, gl_VertexID == 2 ? 3.0 : -1.0);\n"
     "  gl_Position = vec4(p, 0.0, 1.0);\n"
     "}\n";
-// Depth as u16 in VRAM → z/65536 in the D32F target (exact).
+// Depth as u16 in VRAM → z/65536 in the D32F target (exact); each staged PSP pixel covers its
+// N×N texels at render scale N.
 const char* const kDepthFs =
     "#version 330 core\n"
     "uniform usampler2D u_stage;\n"
+    "uniform int u_scale;\n"
     "void main() {\n"
-    "  gl_FragDepth = float(texelFetch(u_stage, ivec2(gl_FragCoord.xy), 0).r) * (1.0 / 65536.0);\n"
+    "  gl_FragDepth = float(texelFetch(u_stage, ivec2(gl_FragCoord.xy) / u_scale, 0).r) * (1.0 / 65536.0);\n"
     "}\n";
+// Write-back at render scale N: the mean of a PSP pixel's N×N texels, rounded, per channel (the
+// box filter `ge2gl compare` also uses on scaled frames). Depth likewise, as a float.
+const char* const kDownColorFs =
+    "#version 330 core\n"
+    "uniform usampler2D u_src;\n"
+    "uniform int u_scale;\n"
+    "out uvec4 o_color;\n"
+    "void main() {\n"
+    "  ivec2 base = ivec2(gl_FragCoord.xy) * u_scale;\n"
+    "  uvec4 sum = uvec4(0u);\n"
+    "  for (int j = 0; j < u_scale; ++j)\n"
+    "    for (int i = 0; i < u_scale; ++i) sum += texelFetch(u_src, base + ivec2(i, j), 0);\n"
+    "  uint n = uint(u_scale * u_scale);\n"
+    "  o_color = (sum + uvec4(n / 2u)) / n;\n"
+    "}\n";
+const char* const kDownDepthFs =
+    "#version 330 core\n"
+    "uniform sampler2D u_src;\n"
+    "uniform int u_scale;\n"
+    "out float o_depth;\n"
+    "void main() {\n"
+    "  ivec2 base = ivec2(gl_FragCoord.xy) * u_scale;\n"
+    "  float sum = 0.0;\n"
+    "  for (int j = 0; j < u_scale; ++j)\n"
+    "    for (int i = 0; i < u_scale; ++i) sum += texelFetch(u_src, base + ivec2(i, j), 0).r;\n"
+    "  o_depth = sum / float(u_scale * u_scale);\n"
+    "}\n";
+
 }  // namespace
 
-FramebufferManager::FramebufferManager(const GlContext& ctx, Memory& mem) : ctx_(ctx), mem_(mem) {
+FramebufferManager::FramebufferManager(const GlContext& ctx, Memory& mem, int scale)
+    : ctx_(ctx), mem_(mem), scale_(std::clamp(scale, 1, 8)) {
     const GlFuncs& gl = ctx_.f();
     gl.GenFramebuffers(1, &drawFbo_);
     gl.GenFramebuffers(1, &readFbo_);
@@ -48,6 +81,10 @@ FramebufferManager::~FramebufferManager() {
     gl.DeleteFramebuffers(1, &utilFbo_);
     if (depthProg_) gl.DeleteProgram(depthProg_);
     if (depthStage_) gl.DeleteTextures(1, &depthStage_);
+    for (GLuint p : {downColorProg_, downDepthProg_})
+        if (p) gl.DeleteProgram(p);
+    for (GLuint t : {colorStage_, downColor_, downDepth_})
+        if (t) gl.DeleteTextures(1, &t);
     gl.DeleteVertexArrays(1, &emptyVao_);
 }
 
@@ -57,38 +94,118 @@ Target* FramebufferManager::find(bool depth, u32 addr, u32 stride, GeBufferForma
     return nullptr;
 }
 
-Target* FramebufferManager::create(bool depth, u32 addr, u32 stride, GeBufferFormat fmt) {
+GLuint FramebufferManager::allocTexture(bool depth, int w, int h) {
     const GlFuncs& gl = ctx_.f();
+    GLuint tex = 0;
+    gl.GenTextures(1, &tex);
+    nearestTexture(gl, tex);
+    if (depth)
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, w, h, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+    else
+        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8UI, w, h, 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, nullptr);
+    return tex;
+}
+
+Target* FramebufferManager::create(bool depth, u32 addr, u32 stride, GeBufferFormat fmt) {
     auto t = std::make_unique<Target>();
     t->depth = depth;
     t->addr = addr;
     t->stride = stride;
     t->fmt = fmt;
-    gl.GenTextures(1, &t->tex);
-    gl.BindTexture(GL_TEXTURE_2D, t->tex);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    if (depth)
-        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, kTargetSize, kTargetSize, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
-                      nullptr);
-    else
-        gl.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8UI, kTargetSize, kTargetSize, 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE,
-                      nullptr);
+    t->allocRows = kTargetSize / 2;
+    t->tex = allocTexture(depth, t->texCols() * scale_, t->allocRows * scale_);
     targets_.push_back(std::move(t));
     return targets_.back().get();
+}
+
+void FramebufferManager::grow(Target& t, int rows) {
+    if (rows <= t.allocRows) return;
+    const GlFuncs& gl = ctx_.f();
+    const int newRows = kTargetSize;
+    GLuint tex = allocTexture(t.depth, t.texCols() * scale_, newRows * scale_);
+    // Copy the texels held so far (rows are PSP pixels; the copy is texel for texel).
+    const GLenum attach = t.depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, attach, GL_TEXTURE_2D, t.tex, 0);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, utilFbo_);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, attach, GL_TEXTURE_2D, tex, 0);
+    const GLenum buf = t.depth ? GL_NONE : GL_COLOR_ATTACHMENT0;
+    gl.ReadBuffer(buf);
+    gl.DrawBuffer(buf);
+    gl.Disable(GL_SCISSOR_TEST);
+    const int w = t.texCols() * scale_, h = t.allocRows * scale_;
+    gl.BlitFramebuffer(0, 0, w, h, 0, 0, w, h, t.depth ? GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, attach, GL_TEXTURE_2D, 0, 0);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, attach, GL_TEXTURE_2D, 0, 0);
+    if (boundColor_ == t.tex || boundDepth_ == t.tex) boundColor_ = 0, boundDepth_ = ~0u;
+    gl.DeleteTextures(1, &t.tex);
+    t.tex = tex;
+    t.allocRows = newRows;
+    ++clobbers_;
+}
+
+void FramebufferManager::copyPixels(const Target& src, int sx, int sy, Target& dst, int dx, int dy, int w, int h) {
+    const GlFuncs& gl = ctx_.f();
+    const int n = scale_;
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, src.tex, 0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, utilFbo_);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, dst.tex, 0);
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+    gl.Disable(GL_SCISSOR_TEST);
+    gl.BlitFramebuffer(sx * n, sy * n, (sx + w) * n, (sy + h) * n, dx * n, dy * n, (dx + w) * n, (dy + h) * n,
+                       GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    dst.dirty.add(Rect{dx, dy, dx + w - 1, dy + h - 1});
+    ++clobbers_;
+}
+
+Target* FramebufferManager::containing(u32 linearAddr) {
+    verifySuspects();
+    for (const auto& t : targets_)
+        if (!t->depth && t->rowsValid > 0 && linearAddr >= t->addr && linearAddr < t->end()) return t.get();
+    return nullptr;
+}
+
+const Target* FramebufferManager::findColor(u32 addr, u32 stride, GeBufferFormat fmt) {
+    verifySuspects();
+    addr = vramLinear(addr);
+    for (const auto& t : targets_)
+        if (!t->depth && t->addr == addr && t->stride == stride && t->fmt == fmt && t->rowsValid > 0) return t.get();
+    return nullptr;
+}
+
+void FramebufferManager::readScaled(const Target& t, int w, int h, std::vector<u32>& out) {
+    w = std::min(w, int(t.width()));
+    h = std::min(h, t.rowsValid);
+    if (w <= 0 || h <= 0) return;
+    const GlFuncs& gl = ctx_.f();
+    const size_t W = size_t(w) * scale_, H = size_t(h) * scale_;
+    out.resize(std::max(out.size(), W * H));
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.tex, 0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
+    gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
+    gl.ReadPixels(0, 0, GLsizei(W), GLsizei(H), GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, out.data());
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    ++readbacks_;
 }
 
 void FramebufferManager::destroy(Target* t) {
     const GlFuncs& gl = ctx_.f();
     if (boundColor_ == t->tex || boundDepth_ == t->tex) boundColor_ = 0, boundDepth_ = ~0u;  // force re-attach
     gl.DeleteTextures(1, &t->tex);
+    ++clobbers_;  // the renderer may hold this texture name bound as a destination copy
     targets_.erase(std::remove_if(targets_.begin(), targets_.end(), [t](const auto& p) { return p.get() == t; }),
                    targets_.end());
 }
 
 Target* FramebufferManager::colorTarget(u32 addr, u32 stride, GeBufferFormat fmt, int rows) {
     if (stride == 0) return nullptr;
+    verifySuspects();
     addr = vramLinear(addr);
     Target* t = find(false, addr, stride, fmt);
     if (!t) t = create(false, addr, stride, fmt);
@@ -98,6 +215,7 @@ Target* FramebufferManager::colorTarget(u32 addr, u32 stride, GeBufferFormat fmt
 
 Target* FramebufferManager::depthTarget(u32 addr, u32 stride, int rows) {
     if (stride == 0) return nullptr;
+    verifySuspects();
     addr = vramLinear(addr);
     Target* t = find(true, addr, stride, GE_FORMAT_565);
     if (!t) t = create(true, addr, stride, GE_FORMAT_565);
@@ -115,6 +233,7 @@ void FramebufferManager::ensureRows(Target& t, int rows) {
     const u32 begin = t.end();
     const u32 end = t.addr + u32(rows) * pitch;
     claim(begin, end, &t);
+    grow(t, rows);
     const int y0 = t.rowsValid;
     t.rowsValid = rows;
     uploadRows(t, y0, rows);
@@ -167,8 +286,12 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
                 for (u32 x = 0; x < avail; ++x) dst[x] = decodePixel16(readLE16(src + 2 * x), t.fmt);
             }
         }
-        gl.BindTexture(GL_TEXTURE_2D, t.tex);
-        gl.TexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pixels_.data());
+        if (scale_ == 1) {
+            gl.BindTexture(GL_TEXTURE_2D, t.tex);
+            gl.TexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pixels_.data());
+        } else {
+            uploadColor(t, x0, y0, w, h);
+        }
         return;
     }
     // Depth: stage the u16 values, then draw them into the D32F target as gl_FragDepth.
@@ -189,14 +312,15 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
     gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.tex, 0);
     gl.DrawBuffer(GL_NONE);
     gl.ReadBuffer(GL_NONE);
-    gl.Viewport(0, 0, kTargetSize, kTargetSize);
+    gl.Viewport(0, 0, kTargetSize * scale_, kTargetSize * scale_);
     gl.Enable(GL_SCISSOR_TEST);
-    gl.Scissor(x0, y0, w, h);
+    gl.Scissor(x0 * scale_, y0 * scale_, w * scale_, h * scale_);
     gl.Enable(GL_DEPTH_TEST);
     gl.DepthFunc(GL_ALWAYS);
     gl.DepthMask(GL_TRUE);
     gl.ColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     gl.UseProgram(depthProg_);
+    gl.Uniform1i(depthScaleLoc_, scale_);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, depthStage_);
     gl.BindVertexArray(emptyVao_);
@@ -207,36 +331,79 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
 
 bool FramebufferManager::buildDepthProgram() {
     const GlFuncs& gl = ctx_.f();
-    auto compile = [&](GLenum type, const char* src) {
-        GLuint sh = gl.CreateShader(type);
-        gl.ShaderSource(sh, 1, &src, nullptr);
-        gl.CompileShader(sh);
-        return sh;
-    };
-    GLuint v = compile(GL_VERTEX_SHADER, kDepthVs), f = compile(GL_FRAGMENT_SHADER, kDepthFs);
-    depthProg_ = gl.CreateProgram();
-    gl.AttachShader(depthProg_, v);
-    gl.AttachShader(depthProg_, f);
-    gl.LinkProgram(depthProg_);
-    gl.DeleteShader(v);
-    gl.DeleteShader(f);
-    GLint ok = 0;
-    gl.GetProgramiv(depthProg_, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        gl.DeleteProgram(depthProg_);
-        depthProg_ = 0;
-        return false;
-    }
+    depthProg_ = linkProgram(gl, kDepthVs, kDepthFs);
+    if (!depthProg_) return false;
+    depthScaleLoc_ = gl.GetUniformLocation(depthProg_, "u_scale");
     gl.UseProgram(depthProg_);
     gl.Uniform1i(gl.GetUniformLocation(depthProg_, "u_stage"), 0);
     gl.GenTextures(1, &depthStage_);
-    gl.BindTexture(GL_TEXTURE_2D, depthStage_);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    nearestTexture(gl, depthStage_);
     gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R16UI, kTargetSize, kTargetSize, 0, GL_RED_INTEGER, GL_UNSIGNED_SHORT, nullptr);
     ++clobbers_;
     return true;
+}
+
+// Scale > 1: the pixels go to a 1× staging texture and are stretched onto the target (nearest:
+// each PSP pixel fills its N×N texels).
+void FramebufferManager::uploadColor(Target& t, int x0, int y0, int w, int h) {
+    const GlFuncs& gl = ctx_.f();
+    if (!colorStage_) colorStage_ = allocTexture(false, kTargetSize, kTargetSize);
+    gl.BindTexture(GL_TEXTURE_2D, colorStage_);
+    gl.TexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pixels_.data());
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, colorStage_, 0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, utilFbo_);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.tex, 0);
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+    gl.Disable(GL_SCISSOR_TEST);
+    const int n = scale_;
+    gl.BlitFramebuffer(x0, y0, x0 + w, y0 + h, x0 * n, y0 * n, (x0 + w) * n, (y0 + h) * n, GL_COLOR_BUFFER_BIT,
+                       GL_NEAREST);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    ++clobbers_;
+}
+
+bool FramebufferManager::buildDownsamplePrograms() {
+    const GlFuncs& gl = ctx_.f();
+    downColorProg_ = linkProgram(gl, kDepthVs, kDownColorFs);
+    downDepthProg_ = linkProgram(gl, kDepthVs, kDownDepthFs);
+    if (!downColorProg_ || !downDepthProg_) return false;
+    downColor_ = allocTexture(false, kTargetSize, kTargetSize);
+    gl.GenTextures(1, &downDepth_);
+    nearestTexture(gl, downDepth_);
+    gl.TexImage2D(GL_TEXTURE_2D, 0, GL_R32F, kTargetSize, kTargetSize, 0, GL_RED, GL_FLOAT, nullptr);
+    ++clobbers_;
+    return true;
+}
+
+// Box average of r (PSP pixels) of t into the 1× scratch texture (downColor_ or downDepth_),
+// left attached to readFbo_ for ReadPixels.
+void FramebufferManager::downsample(const Target& t, const Rect& r) {
+    const GlFuncs& gl = ctx_.f();
+    const GLuint prog = t.depth ? downDepthProg_ : downColorProg_;
+    const GLuint dst = t.depth ? downDepth_ : downColor_;
+    gl.BindFramebuffer(GL_FRAMEBUFFER, utilFbo_);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, dst, 0);
+    gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+    gl.Viewport(0, 0, kTargetSize, kTargetSize);
+    gl.Enable(GL_SCISSOR_TEST);
+    gl.Scissor(r.x0, r.y0, r.x1 - r.x0 + 1, r.y1 - r.y0 + 1);
+    gl.Disable(GL_DEPTH_TEST);
+    gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    gl.UseProgram(prog);
+    gl.Uniform1i(gl.GetUniformLocation(prog, "u_src"), 0);
+    gl.Uniform1i(gl.GetUniformLocation(prog, "u_scale"), scale_);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, t.tex);
+    gl.BindVertexArray(emptyVao_);
+    gl.DrawArrays(GL_TRIANGLES, 0, 3);
+    gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
+    gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, dst, 0);
+    gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+    ++clobbers_;
 }
 
 void FramebufferManager::uploadSpan(Target& t, u32 begin, u32 end) {
@@ -290,6 +457,7 @@ void FramebufferManager::bindDraw(Target* color, Target* depth) {
 void FramebufferManager::writeBack(Target& t) {
     Rect r = t.dirty;
     t.dirty = Rect{};
+    t.announced = Rect{};
     r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0);
     r.x1 = std::min(r.x1, int(t.width()) - 1), r.y1 = std::min(r.y1, t.rowsValid - 1);
     if (r.empty()) return;
@@ -299,9 +467,16 @@ void FramebufferManager::writeBack(Target& t) {
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
     const u32 bpp = t.bpp();
+    const bool scaled = scale_ > 1;
+    if (scaled) {
+        if (!downColorProg_ && !buildDownsamplePrograms()) return;
+        downsample(t, r);  // leaves the 1× result attached to readFbo_
+    }
     if (!t.depth) {
-        gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.tex, 0);
-        gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        if (!scaled) {
+            gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.tex, 0);
+            gl.ReadBuffer(GL_COLOR_ATTACHMENT0);
+        }
         pixels_.resize(size_t(w) * size_t(h));
         gl.ReadPixels(r.x0, r.y0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pixels_.data());
         gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
@@ -319,11 +494,16 @@ void FramebufferManager::writeBack(Target& t) {
             }
         }
     } else {
-        gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.tex, 0);
-        gl.ReadBuffer(GL_NONE);
         depthPixels_.resize(size_t(w) * size_t(h));
-        gl.ReadPixels(r.x0, r.y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depthPixels_.data());
-        gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+        if (scaled) {
+            gl.ReadPixels(r.x0, r.y0, w, h, GL_RED, GL_FLOAT, depthPixels_.data());
+            gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+        } else {
+            gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.tex, 0);
+            gl.ReadBuffer(GL_NONE);
+            gl.ReadPixels(r.x0, r.y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depthPixels_.data());
+            gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
+        }
         for (int y = 0; y < h; ++y) {
             const u32 rowAddr = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0)) * 2;
             const u32 avail = mem_.validSize(rowAddr, u32(w) * 2) / 2;
@@ -347,6 +527,14 @@ void FramebufferManager::syncRange(u32 addr, u32 size) {
         if (!t->dirty.empty() && t->addr < end && t->end() > begin) writeBack(*t);
 }
 
+bool FramebufferManager::dirtyOverlaps(u32 addr, u32 size) const {
+    const u32 begin = vramLinear(addr);
+    const u32 end = size ? begin + size : ~0u;
+    for (const auto& t : targets_)
+        if (!t->dirty.empty() && t->addr < end && t->end() > begin) return true;
+    return false;
+}
+
 void FramebufferManager::memoryWritten(u32 addr, u32 size) {
     const u32 begin = vramLinear(addr);
     if (begin < Memory::kVramBase || begin >= kVramEnd) return;
@@ -356,8 +544,65 @@ void FramebufferManager::memoryWritten(u32 addr, u32 size) {
 }
 
 void FramebufferManager::flushAll() {
-    for (auto& t : targets_)
+    for (auto& t : targets_) {
         if (!t->dirty.empty()) writeBack(*t);
+        hashRows(*t);  // VRAM and the target agree now
+    }
+}
+
+void FramebufferManager::hashRows(Target& t) {
+    const u32 pitch = t.stride * t.bpp();
+    t.rowHashes.resize(size_t(t.rowsValid));
+    for (int y = 0; y < t.rowsValid; ++y) {
+        const u32 a = t.addr + u32(y) * pitch;
+        const u32 n = mem_.validSize(a, pitch);
+        const u8* p = n ? mem_.ptr(a, n) : nullptr;
+        t.rowHashes[size_t(y)] = p ? shadergen::hashBytes(p, n) : 0;
+    }
+}
+
+void FramebufferManager::verifySuspects() {
+    if (!suspect_) return;
+    suspect_ = false;
+    for (auto& tp : targets_) {
+        Target& t = *tp;
+        // Only targets VRAM agreed with at the last flush, with the same rows: a dirty target holds
+        // newer pixels than VRAM, and rows added since were uploaded from VRAM anyway.
+        if (!t.dirty.empty() || t.rowHashes.size() != size_t(t.rowsValid)) continue;
+        const u32 pitch = t.stride * t.bpp();
+        for (int y = 0; y < t.rowsValid;) {
+            auto changed = [&](int row) {
+                const u32 a = t.addr + u32(row) * pitch;
+                const u32 n = mem_.validSize(a, pitch);
+                const u8* p = n ? mem_.ptr(a, n) : nullptr;
+                const u64 h = p ? shadergen::hashBytes(p, n) : 0;
+                if (h == t.rowHashes[size_t(row)]) return false;
+                t.rowHashes[size_t(row)] = h;
+                return true;
+            };
+            if (!changed(y)) {
+                ++y;
+                continue;
+            }
+            int y1 = y + 1;
+            while (y1 < t.rowsValid && changed(y1)) ++y1;
+            uploadRows(t, y, y1);
+            cpuWriteReuploads_ += u64(y1 - y);
+            y = y1;
+        }
+    }
+}
+
+void FramebufferManager::takeNewlyDirty(std::vector<std::pair<u32, u32>>& out) {
+    for (auto& t : targets_) {
+        if (t->dirty.empty()) continue;
+        const int y0 = std::max(t->dirty.y0, 0), y1 = std::min(t->dirty.y1, t->rowsValid - 1);
+        if (!t->announced.empty() && t->announced.y0 <= y0 && t->announced.y1 >= y1) continue;
+        t->announced = Rect{0, y0, 0, y1};
+        const u32 pitch = t->stride * t->bpp();
+        if (y1 < y0) continue;
+        out.emplace_back(t->addr + u32(y0) * pitch, u32(y1 - y0 + 1) * pitch);
+    }
 }
 
 }  // namespace ge::gl

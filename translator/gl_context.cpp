@@ -6,6 +6,7 @@
 // headers give the function types; every OSMesa*/egl* entry point used goes through the tables
 // below.
 #include "translator/gl_context.h"
+#include "translator/null_gl.h"
 
 #include <dlfcn.h>
 
@@ -54,6 +55,7 @@ struct OsmesaApi {
     decltype(&::OSMesaMakeCurrent) MakeCurrent = nullptr;
     decltype(&::OSMesaGetCurrentContext) GetCurrentContext = nullptr;
     decltype(&::OSMesaGetProcAddress) GetProcAddress = nullptr;
+    decltype(&::OSMesaGetColorBuffer) GetColorBuffer = nullptr;
     std::string error;  // empty when the library loaded and every entry point resolved
 
     bool resolveAll(void* lib, std::string& missing) {
@@ -61,7 +63,8 @@ struct OsmesaApi {
                resolve(lib, "OSMesaDestroyContext", DestroyContext, missing) &
                resolve(lib, "OSMesaMakeCurrent", MakeCurrent, missing) &
                resolve(lib, "OSMesaGetCurrentContext", GetCurrentContext, missing) &
-               resolve(lib, "OSMesaGetProcAddress", GetProcAddress, missing);
+               resolve(lib, "OSMesaGetProcAddress", GetProcAddress, missing) &
+               resolve(lib, "OSMesaGetColorBuffer", GetColorBuffer, missing);
     }
 };
 
@@ -74,10 +77,16 @@ struct EglApi {
     decltype(&::eglCreateContext) CreateContext = nullptr;
     decltype(&::eglDestroyContext) DestroyContext = nullptr;
     decltype(&::eglMakeCurrent) MakeCurrent = nullptr;
+    decltype(&::eglGetCurrentContext) GetCurrentContext = nullptr;
+    decltype(&::eglGetCurrentDisplay) GetCurrentDisplay = nullptr;
+    decltype(&::eglGetCurrentSurface) GetCurrentSurface = nullptr;
     std::string error;
 
     bool resolveAll(void* lib, std::string& missing) {
         return resolve(lib, "eglGetProcAddress", GetProcAddress, missing) &
+               resolve(lib, "eglGetCurrentContext", GetCurrentContext, missing) &
+               resolve(lib, "eglGetCurrentDisplay", GetCurrentDisplay, missing) &
+               resolve(lib, "eglGetCurrentSurface", GetCurrentSurface, missing) &
                resolve(lib, "eglInitialize", Initialize, missing) & resolve(lib, "eglTerminate", Terminate, missing) &
                resolve(lib, "eglBindAPI", BindAPI, missing) & resolve(lib, "eglChooseConfig", ChooseConfig, missing) &
                resolve(lib, "eglCreateContext", CreateContext, missing) &
@@ -111,17 +120,21 @@ const EglApi& egl() {
     return api;
 }
 
-// OSMesa's table only when libOSMesa is already in the process (a host that made an OSMesa
-// context current); never loads it.
-const OsmesaApi* osmesaIfLoaded() {
+// A library's table only when the library is already in the process (a host that made one of
+// its contexts current); never loads it. `table` is osmesa() or egl().
+template <typename Api>
+const Api* ifLoaded(std::initializer_list<const char*> names, const Api& (*table)()) {
     std::string tried;
     const char* opened = nullptr;
-    void* lib = openFirst(GE2GL_OSMESA_NAMES, true, opened, tried);
+    void* lib = openFirst(names, true, opened, tried);
     if (!lib) return nullptr;
-    const OsmesaApi& api = osmesa();
-    dlclose(lib);  // the reference RTLD_NOLOAD took; osmesa() holds its own
+    const Api& api = table();
+    dlclose(lib);  // the reference RTLD_NOLOAD took; the table's loader holds its own
     return api.error.empty() ? &api : nullptr;
 }
+
+const OsmesaApi* osmesaIfLoaded() { return ifLoaded<OsmesaApi>(GE2GL_OSMESA_NAMES, &osmesa); }
+const EglApi* eglIfLoaded() { return ifLoaded<EglApi>(GE2GL_EGL_NAMES, &egl); }
 
 }  // namespace
 
@@ -158,7 +171,9 @@ GlContext::~GlContext() {
     }
     if (eglContext_) {
         EGLDisplay d = static_cast<EGLDisplay>(eglDisplay_);
-        egl().MakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        // Unbind only our own context: a host's context current on this thread stays current.
+        if (egl().GetCurrentContext() == static_cast<EGLContext>(eglContext_))
+            egl().MakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         egl().DestroyContext(d, static_cast<EGLContext>(eglContext_));
         // No eglTerminate: the surfaceless display is one per process and shared by every EGL
         // renderer (eglGetPlatformDisplay returns the same handle); terminating it here would
@@ -175,7 +190,71 @@ bool GlContext::makeCurrent() {
     return true;  // Current: the host keeps it current
 }
 
-std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err) {
+bool GlContext::enter(std::string& err) {
+    if (!headless()) return true;
+    if (depth_++ > 0) return true;
+    prevOsmesa_ = prevEglContext_ = nullptr;
+    // What the thread has current, from whichever of the two libraries is in the process. A
+    // host's OSMesa context is restored with its colour buffer; EGL with its display and surfaces.
+    if (const OsmesaApi* os = osmesaIfLoaded()) {
+        if (OSMesaContext c = os->GetCurrentContext(); c && c != static_cast<OSMesaContext>(osmesa_)) {
+            GLint w = 0, h = 0, fmt = 0;
+            void* buf = nullptr;
+            if (os->GetColorBuffer(c, &w, &h, &fmt, &buf)) {
+                prevOsmesa_ = c, prevOsmesaBuffer_ = buf, prevOsmesaW_ = w, prevOsmesaH_ = h;
+            }
+        }
+    }
+    if (const EglApi* e = eglIfLoaded()) {
+        EGLContext c = e->GetCurrentContext();
+        if (c != EGL_NO_CONTEXT && c != static_cast<EGLContext>(eglContext_)) {
+            prevEglContext_ = c;
+            prevEglDisplay_ = e->GetCurrentDisplay();
+            prevEglDraw_ = e->GetCurrentSurface(EGL_DRAW);
+            prevEglRead_ = e->GetCurrentSurface(EGL_READ);
+        }
+    }
+    if (!makeCurrent()) {
+        --depth_;
+        err = osmesa_ ? "OSMesaMakeCurrent failed" : "eglMakeCurrent failed (is the context current on another thread?)";
+        return false;
+    }
+    return true;
+}
+
+void GlContext::leave() {
+    if (!headless() || depth_ == 0 || --depth_ > 0) return;
+    if (osmesa_) {
+        const OsmesaApi& os = osmesa();
+        if (prevOsmesa_)
+            os.MakeCurrent(static_cast<OSMesaContext>(prevOsmesa_), prevOsmesaBuffer_, GL_UNSIGNED_BYTE, prevOsmesaW_,
+                           prevOsmesaH_);
+        else
+            os.MakeCurrent(nullptr, nullptr, 0, 0, 0);  // release ours: another thread may take it
+        if (prevEglContext_) {
+            // Mesa's EGL and OSMesa share one dispatch per thread: OSMesa took it over, so EGL's
+            // context is bound again (unbinding first, as EGL may think it is still current).
+            const EglApi& e = egl();
+            EGLDisplay d = static_cast<EGLDisplay>(prevEglDisplay_);
+            e.MakeCurrent(d, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+            e.MakeCurrent(d, static_cast<EGLSurface>(prevEglDraw_), static_cast<EGLSurface>(prevEglRead_),
+                          static_cast<EGLContext>(prevEglContext_));
+        }
+    } else {
+        const EglApi& e = egl();
+        if (prevEglContext_)
+            e.MakeCurrent(static_cast<EGLDisplay>(prevEglDisplay_), static_cast<EGLSurface>(prevEglDraw_),
+                          static_cast<EGLSurface>(prevEglRead_), static_cast<EGLContext>(prevEglContext_));
+        else
+            e.MakeCurrent(static_cast<EGLDisplay>(eglDisplay_), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (prevOsmesa_)
+            osmesa().MakeCurrent(static_cast<OSMesaContext>(prevOsmesa_), prevOsmesaBuffer_, GL_UNSIGNED_BYTE,
+                                 prevOsmesaW_, prevOsmesaH_);
+    }
+    prevOsmesa_ = prevEglContext_ = nullptr;
+}
+
+std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err, void* (*loader)(const char*)) {
     std::unique_ptr<GlContext> ctx(new GlContext());
     ctx->kind_ = kind;
     if (kind == ContextKind::OSMesa) {
@@ -193,10 +272,7 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
             return nullptr;
         }
         ctx->osmesa_ = c;
-        if (!ctx->makeCurrent()) {
-            err = "OSMesaMakeCurrent failed";
-            return nullptr;
-        }
+        if (!ctx->enter(err)) return nullptr;
         if (const char* missing =
                 ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(osmesa().GetProcAddress(n)); })) {
             err = std::string("OSMesa lacks ") + missing;
@@ -240,7 +316,7 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
             return nullptr;
         }
         ctx->eglContext_ = c;
-        if (!ctx->makeCurrent()) {
+        if (!ctx->enter(err)) {
             err = "EGL: eglMakeCurrent (surfaceless) failed";
             return nullptr;
         }
@@ -248,12 +324,25 @@ std::unique_ptr<GlContext> GlContext::create(ContextKind kind, std::string& err)
             err = std::string("EGL lacks ") + missing;
             return nullptr;
         }
+    } else if (kind == ContextKind::Null) {
+        // No driver: the capabilities of a GL 4.5 driver like llvmpipe (texture barrier, exact
+        // interpolation), so the translator takes the paths it takes there.
+        loadNullGl(ctx->funcs_);
+        GlCaps& c = ctx->caps_;
+        c.major = 4, c.minor = 5;
+        c.version = "4.5 (null GL)";
+        c.renderer = "null GL";
+        c.textureBarrier = true;
+        c.exactInterp = true;
+        return ctx;
     } else {
         // Host context: OSMesa's if the host has libOSMesa loaded and one of its contexts current,
         // else ask EGL (Mesa/glvnd resolve core entry points for any current context).
         const char* missing = nullptr;
         const OsmesaApi* os = osmesaIfLoaded();
-        if (os && os->GetCurrentContext()) {
+        if (loader) {
+            missing = ctx->funcs_.load(loader);
+        } else if (os && os->GetCurrentContext()) {
             missing = ctx->funcs_.load([](const char* n) { return reinterpret_cast<void*>(osmesa().GetProcAddress(n)); });
         } else {
             if (!egl().error.empty()) {

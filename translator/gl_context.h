@@ -33,8 +33,21 @@ class GlContext {
 public:
     ~GlContext();
     // Creates (or adopts, for Current) a context, makes it current and loads the functions.
-    static std::unique_ptr<GlContext> create(ContextKind kind, std::string& err);
+    // Headless contexts are created entered (enter() below, depth 1): a caller that lends the
+    // thread back to a host calls leave().
+    // `loader` (Current only): the host's GetProcAddress; null: EGL's or OSMesa's, whichever has
+    // a context current.
+    static std::unique_ptr<GlContext> create(ContextKind kind, std::string& err,
+                                             void* (*loader)(const char*) = nullptr);
     bool makeCurrent();
+    // Headless contexts: makes this context current on the calling thread and remembers what was
+    // current there (an OSMesa or EGL context of the host, or of another ge2gl instance); the
+    // matching leave() makes that current again, or releases this context so another thread may
+    // take it. Nested calls count. Current and Null: nothing to do.
+    bool enter(std::string& err);
+    void leave();
+    bool headless() const { return osmesa_ || eglContext_; }
+    bool entered() const { return depth_ > 0; }
     const GlFuncs& f() const { return funcs_; }
     const GlCaps& caps() const { return caps_; }
 
@@ -46,6 +59,15 @@ private:
     void* osmesa_ = nullptr;   // OSMesaContext
     void* eglDisplay_ = nullptr;
     void* eglContext_ = nullptr;
+    // What enter() found current on the thread (restored by the outermost leave()).
+    int depth_ = 0;
+    void* prevOsmesa_ = nullptr;
+    void* prevOsmesaBuffer_ = nullptr;
+    int prevOsmesaW_ = 0, prevOsmesaH_ = 0;
+    void* prevEglDisplay_ = nullptr;
+    void* prevEglDraw_ = nullptr;
+    void* prevEglRead_ = nullptr;
+    void* prevEglContext_ = nullptr;
     unsigned char dummy_[4 * 4 * 4] = {};  // OSMesa needs a colour buffer; we render to FBOs
     GlFuncs funcs_;
     GlCaps caps_;

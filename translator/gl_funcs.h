@@ -11,6 +11,13 @@ namespace ge::gl {
     X(PFNGLGETSTRINGIPROC, GetStringi)                                                \
     X(PFNGLGETINTEGERVPROC, GetIntegerv)                                              \
     X(PFNGLGETERRORPROC, GetError)                                                    \
+    X(PFNGLGETBOOLEANVPROC, GetBooleanv)                                              \
+    X(PFNGLGETFLOATVPROC, GetFloatv)                                                  \
+    X(PFNGLISENABLEDPROC, IsEnabled)                                                  \
+    X(PFNGLDEPTHRANGEPROC, DepthRange)                                                \
+    X(PFNGLPOLYGONMODEPROC, PolygonMode)                                              \
+    X(PFNGLPROVOKINGVERTEXPROC, ProvokingVertex)                                      \
+    X(PFNGLBINDSAMPLERPROC, BindSampler)                                              \
     X(PFNGLENABLEPROC, Enable)                                                        \
     X(PFNGLDISABLEPROC, Disable)                                                      \
     X(PFNGLFLUSHPROC, Flush)                                                          \
@@ -20,6 +27,8 @@ namespace ge::gl {
     X(PFNGLCOLORMASKPROC, ColorMask)                                                  \
     X(PFNGLDEPTHMASKPROC, DepthMask)                                                  \
     X(PFNGLDEPTHFUNCPROC, DepthFunc)                                                  \
+    X(PFNGLCULLFACEPROC, CullFace)                                                    \
+    X(PFNGLFRONTFACEPROC, FrontFace)                                                  \
     X(PFNGLPIXELSTOREIPROC, PixelStorei)                                              \
     X(PFNGLREADPIXELSPROC, ReadPixels)                                                \
     X(PFNGLREADBUFFERPROC, ReadBuffer)                                                \
@@ -79,7 +88,15 @@ namespace ge::gl {
     X(PFNGLPROGRAMBINARYPROC, ProgramBinary)
 
 // Optional (extension / newer core) entry points: may be null.
-#define GE2GL_GL_OPTIONAL_FUNCS(X) X(PFNGLTEXTUREBARRIERPROC, TextureBarrier)
+#define GE2GL_GL_OPTIONAL_FUNCS(X)                                                    \
+    X(PFNGLTEXTUREBARRIERPROC, TextureBarrier)                                        \
+    X(PFNGLUNIFORM4UIVPROC, Uniform4uiv)                                              \
+    X(PFNGLTRANSFORMFEEDBACKVARYINGSPROC, TransformFeedbackVaryings)                  \
+    X(PFNGLBEGINTRANSFORMFEEDBACKPROC, BeginTransformFeedback)                        \
+    X(PFNGLENDTRANSFORMFEEDBACKPROC, EndTransformFeedback)                            \
+    X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                        \
+    X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                                    \
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)
 
 struct GlFuncs {
 #define GE2GL_DECLARE(type, name) type name = nullptr;

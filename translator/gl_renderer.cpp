@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <unordered_map>
 
 #include "hle/pixel_format.h"
 #include "hle/texture_decoder.h"
@@ -20,6 +21,9 @@
 #include "shadergen/shader_gen.h"
 #include "translator/framebuffer_manager.h"
 #include "translator/gl_context.h"
+#include "translator/gl_host_state.h"
+#include "translator/gpu_vertex_path.h"
+#include "translator/present.h"
 #include "translator/shader_cache.h"
 #include "translator/texture_cache.h"
 #include "translator/vertex_pipeline.h"
@@ -38,7 +42,8 @@ bool overlaps(const PrimBounds& a, const PrimBounds& b) {
 }
 
 shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
-    shadergen::HostCaps c = caps.hostCaps(opt.baseline, opt.floatInterpolation);
+    // Hardware mode rasterises natively: attributes interpolated by GL (the float path).
+    shadergen::HostCaps c = caps.hostCaps(opt.baseline, opt.floatInterpolation || opt.mode == GlMode::Hw);
     if (opt.disableFramebufferFetch) c.fbFetch = c.depthFetch = 0;
     return c;
 }
@@ -57,6 +62,7 @@ struct Setup {
     shadergen::FixedFunction ff;
     shadergen::FsUniforms u;
     GLuint texture;
+    GLuint clutTexture;  // palette of a CLUT16/32 texture read from a render target
     u32 colorAddr, colorStride, colorFormat;
     u32 depthAddr, depthStride, useDepth;
     s32 scissor[4];  // inclusive x0, y0, x1, y1
@@ -66,11 +72,21 @@ struct Setup {
 
 class GlRenderer final : public Renderer {
 public:
-    GlRenderer(Memory& mem, const GlOptions& opt, std::unique_ptr<GlContext> ctx)
-        : mem_(mem), opt_(opt), ctx_(std::move(ctx)), gl_(ctx_->f()),
+    // `hostState`: what the host's context held before creation (Current contexts), restored by
+    // the first hostLeave().
+    GlRenderer(Memory& mem, const GlOptions& opt, std::unique_ptr<GlContext> ctx, const HostGlState& hostState)
+        : hostState_(hostState), mem_(mem), opt_(opt), hw_(opt.mode == GlMode::Hw), ctx_(std::move(ctx)), gl_(ctx_->f()),
           caps_(hostCapsFor(ctx_->caps(), opt)),
           useBarrier_(!opt.baseline && ctx_->caps().textureBarrier),
-          programs_(*ctx_, caps_, opt.shaderDumpDir, opt.programCacheDir), textures_(*ctx_), fb_(*ctx_, mem) {
+          programs_(*ctx_, caps_, opt.shaderDumpDir, opt.programCacheDir), textures_(*ctx_),
+          fb_(*ctx_, mem, opt.scale), scale_(fb_.scale()), gpu_(*ctx_) {
+        if (hw_) {
+            const std::string& r = ctx_->caps().renderer;
+            const bool software = r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
+                                  r.find("SwiftShader") != std::string::npos;
+            gpuVertices_ = opt.vertices == GlOptions::Vertices::Gpu ||
+                           (opt.vertices == GlOptions::Vertices::Auto && !software);
+        }
         std::memset(static_cast<void*>(&batchSetup_), 0, sizeof batchSetup_);
         gl_.GenVertexArrays(1, &vao_);
         gl_.GenBuffers(1, &vbo_);
@@ -96,7 +112,7 @@ public:
             gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
             gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-            gl_.TexImage2D(GL_TEXTURE_2D, 0, ifmt, kTargetSize, kTargetSize, 0, fmt, type, nullptr);
+            gl_.TexImage2D(GL_TEXTURE_2D, 0, ifmt, kTargetSize * scale_, kTargetSize * scale_, 0, fmt, type, nullptr);
         };
         if (!useBarrier_) {
             makeTex(snapColor_, GL_RGBA8UI, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE);
@@ -122,7 +138,9 @@ public:
     }
 
     ~GlRenderer() override {
-        ctx_->makeCurrent();
+        std::string err;
+        ctx_->enter(err);  // headless: ours current for the deletes, the thread's previous after
+        presenter_.reset();
         textures_.clear();
         gl_.DeleteBuffers(1, &vbo_);
         gl_.DeleteVertexArrays(1, &vao_);
@@ -131,17 +149,71 @@ public:
         if (snapColor_) gl_.DeleteTextures(1, &snapColor_);
         if (snapDepth_) gl_.DeleteTextures(1, &snapDepth_);
         if (snapFbo_) gl_.DeleteFramebuffers(1, &snapFbo_);
-        if (presentTex_) gl_.DeleteTextures(1, &presentTex_);
+        for (auto& kv : palettes_) gl_.DeleteTextures(1, &kv.second);
+        leaveGuard_.ctx = ctx_.get();  // after the members' own deletes
     }
+
+    // ---- Host calls (plugin API; gl_host_state.h) ----
+    // A renderer is created entered (depth 1): the host's thread gets its own state or context
+    // back at the first hostLeave().
+    bool hostEnter(std::string& err) {
+        if (hostDepth_++ > 0) return true;
+        if (ctx_->headless()) {
+            if (!ctx_->enter(err)) {
+                --hostDepth_;
+                return false;
+            }
+        } else {
+            hostState_.save(gl_);
+        }
+        establishTranslatorState(gl_);
+        forgetGlState();
+        return true;
+    }
+    void hostLeave() {
+        if (hostDepth_ == 0 || --hostDepth_ > 0) return;
+        if (ctx_->headless()) {
+            ctx_->leave();  // making another context current flushes ours
+        } else {
+            hostState_.restore(gl_);
+        }
+    }
+    // Drops every assumption about GL bindings (the host or another pass changed them).
+    void forgetGlState() {
+        cache_ = StateCache{};
+        fb_.forgetBindings();
+        seenClobbers_ = fb_.clobbers();
+    }
+    void hostMayHaveWritten(bool frameBuffers) override {
+        ++generation_;  // cached textures are re-hashed against their bytes when next used
+        if (frameBuffers) fb_.markSuspect();
+    }
+    bool holdsNewerThanMemory(u32 addr, u32 size) const override {
+        // A batch not yet drawn may write anywhere in its targets; otherwise the dirty targets.
+        return !geo_.empty() || fb_.dirtyOverlaps(addr, size);
+    }
+    void takeDirtyRanges(std::vector<std::pair<u32, u32>>& out) override {
+        flush();
+        fb_.takeNewlyDirty(out);
+    }
+    GLuint presentFrame(u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, int outW, int outH, std::string& err) {
+        flush();
+        if (!presenter_) presenter_ = std::make_unique<Presenter>(*ctx_, fb_, mem_);
+        const GLuint tex = presenter_->frame(addr, stride, fmt, w, h, outW, outH, err);
+        forgetGlState();
+        return tex;
+    }
+    int scale() const { return scale_; }
 
     // ---- Renderer ----
     u64 pixelWork() const override { return pipeline_.pixelWork(); }
     void setPixelBudget(u64 pixels) override { pipeline_.setPixelBudget(pixels); }
 
     // Geometry is built before the draw's setup: the setup depends on the primitives' colours
-    // (the reference's skipped alpha test, softmodel/blend.h referenceSkipsAlphaTest).
+    // (the reference's skipped alpha test, geometry/reference_rules.h referenceSkipsAlphaTest).
     void drawPrim(const PrimPacket& p) override {
         ++stats_.draws;
+        if (gpuVertices_ && drawPrimOnGpu(p)) return;
         const GeState& st = *p.state;
         std::string err;
         drawGeo_.clear();
@@ -189,6 +261,11 @@ public:
 
     void blockTransfer(const TransferPacket& t, Memory& mem) override {
         flush();
+        if (hw_ && transferOnGpu(t)) {
+            ++stats_.transfersGpu;
+            ++generation_;
+            return;
+        }
         // The source must hold what was drawn; the destination's dirty pixels go to VRAM first so
         // the re-upload after the copy keeps pixels outside the copied rectangle.
         fb_.syncRange(t.srcBegin(), t.srcBytes());
@@ -222,39 +299,47 @@ public:
         s.shaderCacheHits = programs_.stats().hits;
         s.diskCacheHits = programs_.stats().diskHits;
         s.textureUploads = textures_.stats().uploads;
+        s.gpuVertexDraws = gpu_.stats().gpu;
+        for (u64 c : gpu_.stats().cpu) s.cpuVertexDraws += c;
+        for (size_t i = 0; i < size_t(CpuReason::Count) && i < 8; ++i) s.cpuVertexByReason[i] = gpu_.stats().cpu[i];
         s.textureCacheHits = textures_.stats().hits;
         s.readbacks = fb_.readbacks();
         return s;
     }
 
-    unsigned frameTexture(u32 addr, u32 stride, GeBufferFormat fmt) {
-        flushToMemory();
-        if (stride == 0 || stride > 2048) return 0;
-        const u32 w = std::min<u32>(stride, 480), h = 272;
-        const u32 bpp = bytesPerPixel(fmt);
-        std::vector<u32> px(size_t(w) * h, 0);
-        for (u32 y = 0; y < h; ++y) {
-            const u32 row = addr + y * stride * bpp;
-            const u32 avail = mem_.validSize(row, w * bpp) / bpp;
-            if (const u8* src = avail ? mem_.ptr(row, avail * bpp) : nullptr)
-                convertToRGBA8888(src, fmt, avail, 1, stride, &px[size_t(y) * w]);
-        }
-        if (!presentTex_) {
-            gl_.GenTextures(1, &presentTex_);
-            gl_.BindTexture(GL_TEXTURE_2D, presentTex_);
-            gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-            gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-            gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-        }
-        gl_.BindTexture(GL_TEXTURE_2D, presentTex_);
-        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        gl_.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-        gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, GLsizei(w), GLsizei(h), 0, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-        cache_.valid = false;
-        return presentTex_;
-    }
-
     const std::string& lastError() const { return lastError_; }
+
+    int readScaledFrame(u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, std::vector<u32>& rgba) {
+        flush();
+        const int n = scale_;
+        const size_t W = size_t(w) * n;
+        rgba.assign(W * size_t(h) * n, 0xFF000000u);
+        // VRAM first (pixels no target holds), each pixel repeated over its N×N block.
+        const u32 bpp = bytesPerPixel(fmt);
+        std::vector<u32> row(static_cast<size_t>(w));
+        for (int y = 0; y < h; ++y) {
+            std::fill(row.begin(), row.end(), 0u);
+            const u32 a = addr + u32(y) * stride * bpp;
+            const u32 avail = std::min<u32>(mem_.validSize(a, u32(w) * bpp) / bpp, u32(w));
+            if (const u8* src = avail ? mem_.ptr(a, avail * bpp) : nullptr)
+                convertToRGBA8888(src, fmt, avail, 1, stride, row.data());
+            for (int sy = 0; sy < n; ++sy)
+                for (int x = 0; x < w; ++x)
+                    for (int sx = 0; sx < n; ++sx)
+                        rgba[(size_t(y) * n + sy) * W + size_t(x) * n + sx] = row[size_t(x)] | 0xFF000000u;
+        }
+        const Target* t = fb_.findColor(addr, stride, fmt);
+        if (!t) return n;
+        // The target's stored pixels are the frame's bytes (16-bit formats bit-replicated, what a
+        // read expands to), row 0 first: the same RGBA8888 the VRAM conversion gives.
+        std::vector<u32> texels;
+        fb_.readScaled(*t, w, h, texels);
+        const int tw = std::min(w, int(t->width())) * n, th = std::min(h, t->rowsValid) * n;
+        for (int y = 0; y < th; ++y)
+            for (int x = 0; x < tw; ++x) rgba[size_t(y) * W + size_t(x)] = texels[size_t(y) * size_t(tw) + size_t(x)] | 0xFF000000u;
+        cache_.valid = false;
+        return n;
+    }
 
 private:
     VertexSettings vertexSettings(const GeState& st) const {
@@ -272,6 +357,18 @@ private:
     // draw cannot produce pixels (empty scissor, unusable buffers).
     bool beginDraw(const GeState& st, const shadergen::DrawFlags& flags) {
         Setup s;
+        if (!makeSetup(st, flags, s)) return false;
+        if (geo_.empty() || std::memcmp(&s, &batchSetup_, sizeof s) != 0) {
+            flush();
+            std::memcpy(static_cast<void*>(&batchSetup_), &s, sizeof s);
+            batchGeneration_ = generation_;
+        }
+        return true;
+    }
+
+    // The setup of a draw (keys, uniforms, targets, scissor, texture made ready). False when the
+    // draw cannot produce pixels.
+    bool makeSetup(const GeState& st, const shadergen::DrawFlags& flags, Setup& s) {
         std::memset(static_cast<void*>(&s), 0, sizeof s);
         const shadergen::PipelineKeys keys = shadergen::keysFromState(st, flags, caps_, opt_.baseline);
         s.vs = keys.vs;
@@ -296,7 +393,10 @@ private:
             return false;
         }
         if (s.useDepth && s.depthStride == 0) s.useDepth = 0;
-        if (s.fs.tex) {
+        s.u.texScale = 1;
+        if (s.fs.tex && hw_ && sampleTarget(st, s)) {
+            // Render-to-texture on the GPU: the render target is the texture (no VRAM round trip).
+        } else if (s.fs.tex) {
             const int levels = s.fs.texMip ? int(std::min<u32>(st.TMODE_maxlevel(), 7)) + 1 : 1;
             // Render-to-texture: pending draws into the texture's bytes, then the targets' pixels,
             // must be in VRAM before the texture is decoded.
@@ -323,12 +423,166 @@ private:
                 for (int i = 0; i < 4; ++i) s.u.texLevels[l][i] = e->placement[std::min(l, e->levels - 1)][i];
             s.u.texMaxLevel = e->levels - 1;
         }
-        if (geo_.empty() || std::memcmp(&s, &batchSetup_, sizeof s) != 0) {
-            flush();
-            std::memcpy(static_cast<void*>(&batchSetup_), &s, sizeof s);
-            batchGeneration_ = generation_;
-        }
         return true;
+    }
+
+    // Hardware mode: the PRIM draw with its vertex work in the vertex shader (gpu_vertex_path.h);
+    // false when it stays on the CPU path.
+    bool drawPrimOnGpu(const PrimPacket& p) {
+        const GeState& st = *p.state;
+        const VertexSettings vs = vertexSettings(st);
+        shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st);
+        // The colours reaching the fragments only matter to the reference's skipped alpha test;
+        // prepare() keeps the draws where that rule could fire on the CPU.
+        flags.vertexAlphaFull = true;
+        const bool dstTexture =
+            shadergen::keysFromState(st, flags, caps_, opt_.baseline).fs.dstRead == shadergen::DstRead::Texture;
+        if (!gpu_.prepare(mem_, st, p, vs.texture, vs.fog, vs.cull, vs.cullCcw, dstTexture, gpuDraw_)) return false;
+        // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
+        pipeline_.keepOpenVertices(mem_, st, p);
+        Setup s;
+        if (!makeSetup(st, flags, s)) {
+            flush();
+            return true;
+        }
+        flush();  // what the CPU path has batched draws first
+        Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
+        if (!ct) return true;
+        const bool depthOnColor = s.useDepth && s.depthStride &&
+                                  depthOverlapsColor(*ct, s.depthAddr, s.depthStride, s.scissor[3] + 1);
+        Target* dt = s.useDepth && !depthOnColor ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1)
+                                                 : nullptr;
+        const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
+        std::string err;
+        const Program* prog = programs_.getHw(gpuDraw_.key, s.fs, &err);
+        if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false;
+        if (!prog) {
+            noteError(err);
+            return true;
+        }
+        fb_.bindDraw(ct, dt);
+        if (fb_.clobbers() != seenClobbers_) cache_.valid = false;
+        applyState(s, *prog, 0, 0);
+        gpu_.draw(gpuDraw_, *prog);
+        ++stats_.glDrawCalls;
+        // Without CPU geometry the drawn area is bounded by the scissor.
+        const Rect drawn{s.scissor[0], s.scissor[1], s.scissor[2], s.scissor[3]};
+        const bool colorWrites = s.fs.dstRead != shadergen::DstRead::None || s.ff.colorMask[0] || s.ff.colorMask[1] ||
+                                 s.ff.colorMask[2] || s.ff.colorMask[3];
+        if (colorWrites) ct->dirty.add(drawn);
+        if (dt && s.ff.depthMask) dt->dirty.add(drawn);
+        return true;
+    }
+
+    // Hardware mode: a block transfer whose source and destination rectangles both lie inside
+    // colour render targets of the same format (whole rows of the rectangle within the target's
+    // width and valid rows) is a GPU copy at render scale; the destination target holds the result
+    // (dirty) until a write-back, so scaled detail survives. Anything else goes through VRAM.
+    bool transferOnGpu(const TransferPacket& t) {
+        struct Side {
+            Target* target;
+            int x, y;
+        };
+        auto locate = [&](u32 base, u32 stride, u32 x, u32 y, Side& out) {
+            const u32 begin = vramLinear(base + (y * stride + x) * t.bpp);
+            Target* tg = fb_.containing(begin);
+            if (!tg || tg->stride != stride || tg->bpp() != t.bpp) return false;
+            const u32 px = (begin - tg->addr) / t.bpp;
+            if ((begin - tg->addr) % t.bpp) return false;
+            out = Side{tg, int(px % stride), int(px / stride)};
+            return u32(out.x) + t.width <= tg->width() && out.y + int(t.height) <= tg->rowsValid;
+        };
+        Side src{}, dst{};
+        if (!locate(t.src, t.srcStride, t.srcX, t.srcY, src) || !locate(t.dst, t.dstStride, t.dstX, t.dstY, dst))
+            return false;
+        if (src.target->fmt != dst.target->fmt) return false;  // bytes reinterpreted: through VRAM
+        if (src.target == dst.target) {
+            const bool overlap = src.x < dst.x + int(t.width) && dst.x < src.x + int(t.width) &&
+                                 src.y < dst.y + int(t.height) && dst.y < src.y + int(t.height);
+            if (overlap) return false;  // the GE's row order matters; a blit's is undefined
+        }
+        fb_.copyPixels(*src.target, src.x, src.y, *dst.target, dst.x, dst.y, int(t.width), int(t.height));
+        cache_.valid = false;
+        return true;
+    }
+
+    // Hardware mode: when the texture's level 0 lies in a colour render target whose pixels a
+    // texture of its format reads directly (8888 as 8888, a 16-bit buffer as any 16-bit format),
+    // the draw samples the target in place at render scale (FsKey::texTarget). CLUT16 over a 16-bit
+    // buffer and CLUT32 over an 8888 one (one index per pixel: how games read a buffer's channel
+    // through a palette) look the pixel up in a palette texture. Not for mipmaps, CLUT4/8 (several
+    // indices per pixel), swizzled textures or the draw's own colour target (a feedback loop):
+    // those go through VRAM.
+    bool sampleTarget(const GeState& st, Setup& s) {
+        const Target* t = fb_.containing(vramLinear(st.textureAddr(0)));
+        if (!t) return false;
+        const u32 tf = st.TPF_format();
+        const bool fb32 = t->fmt == GE_FORMAT_8888;
+        // Texels per pixel: CLUT4/CLUT8 read a buffer's nibbles/bytes (the texture's buffer width
+        // then counts them), CLUT16 over 16-bit and CLUT32 over 8888 one index per pixel.
+        u32 perPixel = 0;
+        if (tf == GE_TFMT_CLUT4) perPixel = fb32 ? 8 : 4;
+        else if (tf == GE_TFMT_CLUT8) perPixel = fb32 ? 4 : 2;
+        else if (fb32 ? (tf == GE_TFMT_CLUT32 || tf == GE_TFMT_8888) : (tf <= GE_TFMT_4444 || tf == GE_TFMT_CLUT16))
+            perPixel = 1;
+        const bool clut = tf >= GE_TFMT_CLUT4 && tf <= GE_TFMT_CLUT32;
+        const u32 off = vramLinear(st.textureAddr(0)) - t->addr;
+        if (!perPixel || s.fs.texMip || st.TMODE_swizzle() || st.textureBufWidth(0) != t->stride * perPixel ||
+            off % t->bpp() ||
+            (t->addr == s.colorAddr && t->stride == s.colorStride)) {
+            ++stats_.rttVram;
+            return false;
+        }
+        // Pending draws into the source target first (the batch may be drawing into it).
+        const u32 lin = vramLinear(st.textureAddr(0));
+        if (!geo_.empty() && batchOverlaps(lin, lin + 1)) flush();
+        const u32 px = off / t->bpp();
+        s.fs.texTarget = u8(1 + t->fmt);
+        s.fs.texFormat = u8(tf);
+        shadergen::canonicalize(s.fs);
+        s.texture = t->tex;
+        const TextureLevelInfo info = textureLevelInfo(st, 0);
+        s.u.texLevels[0][0] = int(px / t->stride) * scale_;
+        s.u.texLevels[0][1] = int(std::max<u32>(info.width, 1));
+        s.u.texLevels[0][2] = int(std::max<u32>(info.height, 1));
+        s.u.texLevels[0][3] = int(px % t->stride) * scale_;
+        s.u.texMaxLevel = 0;
+        s.u.texScale = scale_;
+        if (clut) {
+            s.u.clutShift = s32(st.CLUT_shift());
+            s.u.clutMask = s32(st.CLUT_mask());
+            s.clutTexture = paletteTexture(st);
+        }
+        cache_.texture = ~0u;
+        ++stats_.rttGpu;
+        return true;
+    }
+
+    // A 256×1 RGBA8UI texture of the palette per masked index (hle maskedPalette), one per
+    // distinct palette; the set is dropped (after drawing what uses it) past 64.
+    GLuint paletteTexture(const GeState& st) {
+        u32 pal[256];
+        maskedPalette(st, 0, pal);
+        const u64 h = shadergen::hashBytes(pal, sizeof pal);
+        if (auto it = palettes_.find(h); it != palettes_.end()) return it->second;
+        if (palettes_.size() >= 64) {
+            flush();
+            for (auto& kv : palettes_) gl_.DeleteTextures(1, &kv.second);
+            palettes_.clear();
+            cache_.clutTexture = ~0u;
+        }
+        GLuint tex = 0;
+        gl_.GenTextures(1, &tex);
+        gl_.BindTexture(GL_TEXTURE_2D, tex);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        gl_.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+        gl_.PixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl_.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8UI, 256, 1, 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pal);
+        palettes_.emplace(h, tex);
+        cache_.texture = ~0u;  // unit 0 was used for the upload
+        return tex;
     }
 
     bool batchOverlaps(u32 begin, u32 end) const {
@@ -346,7 +600,7 @@ private:
     // ---- GL state cache ----
     struct StateCache {
         bool valid = false;
-        GLuint program = ~0u, texture = ~0u, dstColor = ~0u, dstDepth = ~0u;
+        GLuint program = ~0u, texture = ~0u, dstColor = ~0u, dstDepth = ~0u, clutTexture = ~0u;
         s32 scissor[4] = {};
         bool colorMask[4] = {};
         bool depthTest = false, depthMask = false;
@@ -361,7 +615,8 @@ private:
         if (!cache_.valid) {
             cache_ = StateCache{};
             cache_.valid = true;
-            gl_.Viewport(0, 0, kTargetSize, kTargetSize);
+            // Drawing coordinates map to the target's texels at render scale N (u_ndcScale).
+            gl_.Viewport(0, 0, kTargetSize * scale_, kTargetSize * scale_);
             gl_.Enable(GL_SCISSOR_TEST);
             gl_.BindVertexArray(vao_);
             gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
@@ -377,7 +632,8 @@ private:
             ++stats_.stateChanges;
         }
         if (std::memcmp(cache_.scissor, s.scissor, sizeof s.scissor) != 0) {
-            gl_.Scissor(s.scissor[0], s.scissor[1], s.scissor[2] - s.scissor[0] + 1, s.scissor[3] - s.scissor[1] + 1);
+            gl_.Scissor(s.scissor[0] * scale_, s.scissor[1] * scale_, (s.scissor[2] - s.scissor[0] + 1) * scale_,
+                        (s.scissor[3] - s.scissor[1] + 1) * scale_);
             std::memcpy(cache_.scissor, s.scissor, sizeof s.scissor);
             ++stats_.stateChanges;
         }
@@ -416,6 +672,7 @@ private:
             ++stats_.stateChanges;
         };
         if (s.fs.tex) bindUnit(shadergen::kUnitTex, s.texture, cache_.texture);
+        if (s.clutTexture) bindUnit(shadergen::kUnitClut, s.clutTexture, cache_.clutTexture);
         if (s.fs.dstRead == shadergen::DstRead::Texture) bindUnit(shadergen::kUnitDstColor, dstColor, cache_.dstColor);
         if (s.fs.depthRead == shadergen::DepthRead::Texture) bindUnit(shadergen::kUnitDstDepth, dstDepth, cache_.dstDepth);
 
@@ -440,6 +697,10 @@ private:
         const s32 tp[2] = {u.texMaxLevel, u.texLodBias};
         if (prog.texParams >= 0) gl_.Uniform2iv(prog.texParams, 1, tp);
         if (prog.texSlope >= 0) gl_.Uniform1f(prog.texSlope, u.texSlope);
+        if (prog.pixScale >= 0) gl_.Uniform1i(prog.pixScale, scale_);
+        if (prog.texScale >= 0) gl_.Uniform1i(prog.texScale, u.texScale);
+        const s32 cl[2] = {u.clutShift, u.clutMask};
+        if (prog.clut >= 0) gl_.Uniform2iv(prog.clut, 1, cl);
     }
 
     void flush() {
@@ -542,8 +803,9 @@ private:
                         gl_.Disable(GL_SCISSOR_TEST);
                         GLbitfield mask = GL_COLOR_BUFFER_BIT;
                         if (s.fs.depthRead == shadergen::DepthRead::Texture && dt) mask |= GL_DEPTH_BUFFER_BIT;
-                        gl_.BlitFramebuffer(area.x0, area.y0, area.x1 + 1, area.y1 + 1, area.x0, area.y0, area.x1 + 1,
-                                            area.y1 + 1, mask, GL_NEAREST);
+                        const int n = scale_;
+                        gl_.BlitFramebuffer(area.x0 * n, area.y0 * n, (area.x1 + 1) * n, (area.y1 + 1) * n, area.x0 * n,
+                                            area.y0 * n, (area.x1 + 1) * n, (area.y1 + 1) * n, mask, GL_NEAREST);
                         gl_.Enable(GL_SCISSOR_TEST);
                         gl_.BindFramebuffer(GL_FRAMEBUFFER, fb_.drawFbo());
                     }
@@ -562,16 +824,31 @@ private:
         geo_.clear();
     }
 
+    HostGlState hostState_;  // Current contexts: the host's state while ge2gl works (hostEnter)
     Memory& mem_;
     GlOptions opt_;
+    const bool hw_;  // GlMode::Hw
+    bool gpuVertices_ = false;  // hw mode with GlOptions::vertices resolved to Gpu
     std::unique_ptr<GlContext> ctx_;
+    // Destroyed after every member below (they delete GL objects in their destructors) and before
+    // the context: the destructor enters the context, this leaves it once they are gone, so a
+    // headless context's deletes never land in a host's context current on the thread.
+    struct LeaveWhenDestroyed {
+        GlContext* ctx = nullptr;
+        ~LeaveWhenDestroyed() {
+            if (ctx) ctx->leave();
+        }
+    } leaveGuard_;
     const GlFuncs& gl_;
     shadergen::HostCaps caps_;
     bool useBarrier_ = false;
     ProgramCache programs_;
     TextureCache textures_;
     FramebufferManager fb_;
+    const int scale_;
     VertexPipeline pipeline_;
+    GpuVertexPath gpu_;
+    GpuDraw gpuDraw_;
     u64 batchGeneration_ = 0;
     Geometry geo_;
     Geometry drawGeo_;  // the current draw's geometry, before it joins the batch
@@ -580,17 +857,31 @@ private:
     u64 seenClobbers_ = 0;
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
-    GLuint snapColor_ = 0, snapDepth_ = 0, snapFbo_ = 0, presentTex_ = 0;
+    GLuint snapColor_ = 0, snapDepth_ = 0, snapFbo_ = 0;
+    std::unique_ptr<Presenter> presenter_;
+    int hostDepth_ = 1;
     GLuint recordBuf_ = 0, recordTex_ = 0;
+    std::unordered_map<u64, GLuint> palettes_;  // paletteTexture
     GlStats stats_;
     std::string lastError_;
     u64 errors_ = 0;
 };
 
 std::unique_ptr<Renderer> createGlRenderer(Memory& mem, const GlOptions& opt, std::string& err) {
-    std::unique_ptr<GlContext> ctx = GlContext::create(opt.context, err);
+    if (opt.scale < 1 || opt.scale > 8) {
+        err = "render scale " + std::to_string(opt.scale) + " out of range (1-8)";
+        return nullptr;
+    }
+    if (opt.scale > 1 && opt.mode != GlMode::Hw) {
+        err = "render scale above 1 needs the GL hardware mode (exact mode evaluates the PSP's own pixels)";
+        return nullptr;
+    }
+    std::unique_ptr<GlContext> ctx = GlContext::create(opt.context, err, opt.loader);
     if (!ctx) return nullptr;
-    return std::make_unique<GlRenderer>(mem, opt, std::move(ctx));
+    // A host's context: what it holds now is what the first hostLeave() gives back.
+    HostGlState host;
+    if (opt.context == ContextKind::Current) host.save(ctx->f());
+    return std::make_unique<GlRenderer>(mem, opt, std::move(ctx), host);
 }
 
 GlStats glStats(const Renderer& r) { return static_cast<const GlRenderer&>(r).stats(); }
@@ -611,11 +902,32 @@ std::string glStatsText(const GlStats& s) {
     line("textureUploads", s.textureUploads);
     line("textureCacheHits", s.textureCacheHits);
     line("readbacks", s.readbacks);
+    line("rttGpu", s.rttGpu);
+    line("rttVram", s.rttVram);
+    line("transfersGpu", s.transfersGpu);
+    line("gpuVertexDraws", s.gpuVertexDraws);
+    line("cpuVertexDraws", s.cpuVertexDraws);
+    for (size_t i = 0; i < size_t(CpuReason::Count) && i < 8; ++i)
+        if (s.cpuVertexByReason[i]) {
+            char name[64];
+            std::snprintf(name, sizeof name, "  cpu: %s", cpuReasonName(CpuReason(i)));
+            line(name, s.cpuVertexByReason[i]);
+        }
     return out;
 }
 
-unsigned glFrameTexture(Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat fmt) {
-    return static_cast<GlRenderer&>(r).frameTexture(vramAddr, stride, fmt);
+int glReadScaledFrame(Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat fmt, int w, int h, std::vector<u32>& rgba) {
+    return static_cast<GlRenderer&>(r).readScaledFrame(vramAddr, stride, fmt, w, h, rgba);
 }
+
+unsigned glPresentFrame(Renderer& r, u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, int outW, int outH,
+                        std::string& err) {
+    return static_cast<GlRenderer&>(r).presentFrame(addr, stride, fmt, w, h, outW, outH, err);
+}
+
+int glRenderScale(const Renderer& r) { return static_cast<const GlRenderer&>(r).scale(); }
+
+bool glHostEnter(Renderer& r, std::string& err) { return static_cast<GlRenderer&>(r).hostEnter(err); }
+void glHostLeave(Renderer& r) { static_cast<GlRenderer&>(r).hostLeave(); }
 
 }  // namespace ge::gl

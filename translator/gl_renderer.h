@@ -14,17 +14,38 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "hle/memory.h"
 #include "hle/renderer.h"
 
 namespace ge::gl {
 
-enum class ContextKind { OSMesa, EGL, Current /*host made a context current*/ };
+// Null: a dispatch table whose calls do nothing (translator/null_gl.h): measures the
+// translator's own CPU cost; renders nothing.
+enum class ContextKind { OSMesa, EGL, Current /*host made a context current*/, Null };
+
+// exact: the software model's rasteriser arithmetic in the fragment shader (per-triangle records,
+//        GL 4.0 + int64; float interpolation without), 1× only — the accuracy and CI mode.
+// hw:    GL rasterises natively with interpolated attributes at render scale 1–8 (targets N× the
+//        PSP's pixels; VRAM write-back box-downsampled); the pixel pipeline keeps the exact integer
+//        fragment code (dither indexed by the PSP pixel). Vertex work is still the CPU's (shared
+//        geometry code): GPU vertex shaders are not built yet.
+enum class GlMode { Exact, Hw };
 
 struct GlOptions {
     ContextKind context = ContextKind::OSMesa;
+    GlMode mode = GlMode::Exact;
+    int scale = 1;                // render scale N (1–8); above 1 needs GlMode::Hw
+    // Hw mode: where PRIM vertices are transformed and lit. Gpu: in the generated vertex shader
+    // where it can (gpu_vertex_path.h). Cpu: all on the CPU (shared geometry/ code). Auto: Cpu on
+    // a software rasteriser (llvmpipe, softpipe, SwiftShader: the "GPU" is the same CPU, and one
+    // GL draw per GE draw costs it more than the CPU transform of a batched draw), else Gpu.
+    enum class Vertices { Auto, Gpu, Cpu } vertices = Vertices::Auto;
     bool baseline = false;        // force GL 3.3 core paths, no optional extensions
+    // Current: the host's GL loader (SDL_GL_GetProcAddress, eglGetProcAddress, ...); null: EGL's
+    // or OSMesa's, whichever has a context current.
+    void* (*loader)(const char*) = nullptr;
     std::string shaderDumpDir;    // write every generated shader here (empty = off)
     std::string programCacheDir;  // on-disk program binaries, empty = off
     // Testing aid: ignore framebuffer fetch so destination reads use the texture-barrier path
@@ -38,15 +59,37 @@ struct GlOptions {
 
 struct GlStats {
     u64 draws = 0, glDrawCalls = 0, stateChanges = 0, shaderCompiles = 0, shaderCacheHits = 0, diskCacheHits = 0,
-        textureUploads = 0, textureCacheHits = 0, readbacks = 0;
+        textureUploads = 0, textureCacheHits = 0, readbacks = 0,
+        // Hardware mode: textures sampled from a render target in place / through VRAM (a frame
+        // buffer the GPU path cannot read: other formats, mipmaps, the draw's own target); block
+        // transfers done between render targets on the GPU.
+        rttGpu = 0, rttVram = 0, transfersGpu = 0,
+        // Hardware mode: PRIM draws whose vertices the vertex shader processed / that stayed on
+        // the CPU (reasons in gpuVertexStats, gpu_vertex_path.h).
+        gpuVertexDraws = 0, cpuVertexDraws = 0;
+    u64 cpuVertexByReason[8] = {};  // gpu_vertex_path.h CpuReason order
 };
 
 // Creates the context (unless Current) and the renderer; nullptr + err when GL is unavailable.
 std::unique_ptr<ge::Renderer> createGlRenderer(ge::Memory& mem, const GlOptions& opt, std::string& err);
 GlStats glStats(const ge::Renderer& r);     // r must come from createGlRenderer
 std::string glStatsText(const GlStats& s);  // one line per counter
-// GL texture name (RGBA8, row 0 = top line) holding the frame at vramAddr for presenting (plugin
-// API). Valid until the next call; 0 on error.
-unsigned glFrameTexture(ge::Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat fmt);
+// The frame at vramAddr (stride pixels, format fmt) at render scale N: (w·N)×(h·N) RGBA8888 with
+// alpha 255 (R in bits 0–7), row 0 = top line, read from the render target where one holds it and
+// from VRAM (each pixel repeated N×N) elsewhere. Returns N.
+int glReadScaledFrame(ge::Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat fmt, int w, int h,
+                      std::vector<u32>& rgba);
+// GL texture name (RGBA8, row 0 = top line, outW x outH) holding the w x h frame at addr (VRAM or
+// RAM) for presenting (plugin API; present.h). Valid until the next call; 0 and err on error.
+unsigned glPresentFrame(ge::Renderer& r, u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, int outW, int outH,
+                        std::string& err);
+int glRenderScale(const ge::Renderer& r);
+// Plugin API calls that touch GL are bracketed by these (gl_host_state.h): a headless context is
+// made current on the calling thread and the thread's previous one restored after; a host's
+// context has its state saved and restored; either way the renderer re-establishes its own state
+// on entry. Nested pairs count. A renderer is created entered: the first glHostLeave() hands the
+// thread (or the host's state) back.
+bool glHostEnter(ge::Renderer& r, std::string& err);
+void glHostLeave(ge::Renderer& r);
 
 }  // namespace ge::gl

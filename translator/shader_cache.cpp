@@ -42,19 +42,38 @@ const Program* ProgramCache::get(const shadergen::VsKey& vs, const shadergen::Fs
     std::memset(static_cast<void*>(&key), 0, sizeof key);
     key.vs = vs;
     key.fs = fs;
+    return getImpl(key, err);
+}
+
+const Program* ProgramCache::getHw(const shadergen::HwVsKey& vs, const shadergen::FsKey& fs, std::string* err) {
+    Key key;
+    std::memset(static_cast<void*>(&key), 0, sizeof key);
+    key.hw = vs;
+    key.fs = fs;
+    key.hwVertex = 1;
+    return getImpl(key, err);
+}
+
+const Program* ProgramCache::getImpl(const Key& key, std::string* err) {
     auto it = programs_.find(key);
     if (it != programs_.end()) {
         ++stats_.hits;
         return &it->second;
     }
-    std::string vsSrc, fsSrc;
-    if (!shadergen::generateVertexShader(vs, caps_, vsSrc, err)) return nullptr;
-    if (!shadergen::generateFragmentShader(fs, caps_, fsSrc, err)) return nullptr;
-    const std::string all = vsSrc + '\0' + fsSrc + '\0' + ctx_.caps().version + '\0' + ctx_.caps().renderer;
+    std::string vsSrc, fsSrc, gsSrc;
+    const bool vsOk = key.hwVertex ? shadergen::generateHwVertexShader(key.hw, caps_, vsSrc, err)
+                                   : shadergen::generateVertexShader(key.vs, caps_, vsSrc, err);
+    if (!vsOk) return nullptr;
+    if (key.hwVertex && key.hw.geometryShader && !shadergen::generateHwGeometryShader(key.hw, caps_, gsSrc, err))
+        return nullptr;
+    if (!shadergen::generateFragmentShader(key.fs, caps_, fsSrc, err)) return nullptr;
+    const std::string all =
+        vsSrc + '\0' + gsSrc + '\0' + fsSrc + '\0' + ctx_.caps().version + '\0' + ctx_.caps().renderer;
     const std::string name = hex64(shadergen::hashBytes(all.data(), all.size()));
     if (!dumpDir_.empty()) {
         std::ofstream(dumpDir_ + "/" + name + ".vert") << vsSrc;
         std::ofstream(dumpDir_ + "/" + name + ".frag") << fsSrc;
+        if (!gsSrc.empty()) std::ofstream(dumpDir_ + "/" + name + ".geom") << gsSrc;
     }
     Program p;
     p.id = ctx_.f().CreateProgram();
@@ -63,7 +82,7 @@ const Program* ProgramCache::get(const shadergen::VsKey& vs, const shadergen::Fs
         ok = true;
         ++stats_.diskHits;
     } else {
-        ok = build(vsSrc, fsSrc, p, err);
+        ok = build(vsSrc, fsSrc, gsSrc, p, err);
         if (ok) {
             ++stats_.compiles;
             if (!diskDir_.empty()) saveBinary(diskDir_ + "/" + name + ".bin", p.id);
@@ -77,7 +96,8 @@ const Program* ProgramCache::get(const shadergen::VsKey& vs, const shadergen::Fs
     return &programs_.emplace(key, p).first->second;
 }
 
-bool ProgramCache::build(const std::string& vsSrc, const std::string& fsSrc, Program& p, std::string* err) {
+bool ProgramCache::build(const std::string& vsSrc, const std::string& fsSrc, const std::string& gsSrc, Program& p,
+                         std::string* err) {
     const GlFuncs& gl = ctx_.f();
     auto compile = [&](GLenum type, const std::string& src) -> GLuint {
         GLuint sh = gl.CreateShader(type);
@@ -89,7 +109,8 @@ bool ProgramCache::build(const std::string& vsSrc, const std::string& fsSrc, Pro
         if (!okc) {
             char log[4096] = {};
             gl.GetShaderInfoLog(sh, sizeof log - 1, nullptr, log);
-            if (err) *err = std::string(type == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + log + "\n" + src;
+            const char* stage = type == GL_VERTEX_SHADER ? "vertex" : (type == GL_GEOMETRY_SHADER ? "geometry" : "fragment");
+            if (err) *err = std::string(stage) + " shader: " + log + "\n" + src;
             gl.DeleteShader(sh);
             return 0;
         }
@@ -102,14 +123,25 @@ bool ProgramCache::build(const std::string& vsSrc, const std::string& fsSrc, Pro
         gl.DeleteShader(v);
         return false;
     }
+    GLuint g = 0;
+    if (!gsSrc.empty() && !(g = compile(GL_GEOMETRY_SHADER, gsSrc))) {
+        gl.DeleteShader(v);
+        gl.DeleteShader(f);
+        return false;
+    }
     gl.AttachShader(p.id, v);
     gl.AttachShader(p.id, f);
+    if (g) gl.AttachShader(p.id, g);
     if (!diskDir_.empty()) gl.ProgramParameteri(p.id, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     gl.LinkProgram(p.id);
     gl.DetachShader(p.id, v);
     gl.DetachShader(p.id, f);
     gl.DeleteShader(v);
     gl.DeleteShader(f);
+    if (g) {
+        gl.DetachShader(p.id, g);
+        gl.DeleteShader(g);
+    }
     GLint linked = 0;
     gl.GetProgramiv(p.id, GL_LINK_STATUS, &linked);
     if (!linked) {
@@ -188,6 +220,10 @@ void ProgramCache::lookupUniforms(Program& p) {
     p.texLevels = loc(U::kTexLevels);
     p.texParams = loc(U::kTexParams);
     p.texSlope = loc(U::kTexSlope);
+    p.pixScale = loc(U::kPixScale);
+    p.texScale = loc(U::kTexScale);
+    p.clut = loc(U::kClut);
+    p.hwBlock = loc(shadergen::hwuniform::kBlock);
     // Samplers never change unit: set once.
     gl.UseProgram(p.id);
     if (p.tex >= 0) gl.Uniform1i(p.tex, shadergen::kUnitTex);
@@ -195,6 +231,10 @@ void ProgramCache::lookupUniforms(Program& p) {
     if (p.dstDepth >= 0) gl.Uniform1i(p.dstDepth, shadergen::kUnitDstDepth);
     const GLint tris = loc(shadergen::kTrisUniform);
     if (tris >= 0) gl.Uniform1i(tris, shadergen::kUnitTris);
+    const GLint clutTex = loc(shadergen::kClutTexUniform);
+    if (clutTex >= 0) gl.Uniform1i(clutTex, shadergen::kUnitClut);
+    const GLint vtx = loc(shadergen::hwuniform::kVertexBytes);
+    if (vtx >= 0) gl.Uniform1i(vtx, shadergen::kUnitVertexBytes);
     gl.UseProgram(0);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "shadergen/hw_vertex.h"
 #include "shadergen/shader_keys.h"
 #include "translator/gl_context.h"
 
@@ -19,7 +20,8 @@ struct Program {
     // Uniform locations (−1 when the program does not use it).
     GLint ndcScale = -1, tex = -1, dstColor = -1, dstDepth = -1, texEnv = -1, fogColor = -1, alphaTest = -1,
           colorRef = -1, colorMask = -1, stencil = -1, fixA = -1, fixB = -1, dither = -1, keep = -1, zRange = -1,
-          texLevels = -1, texParams = -1, texSlope = -1;
+          texLevels = -1, texParams = -1, texSlope = -1, pixScale = -1, texScale = -1, clut = -1;
+    GLint hwBlock = -1;  // hardware-mode vertex shader: the HwVsUniforms words (shadergen/hw_vertex.h)
 };
 
 struct ProgramCacheStats {
@@ -32,12 +34,16 @@ public:
     ~ProgramCache();
     // nullptr + err when generation or compilation fails.
     const Program* get(const shadergen::VsKey& vs, const shadergen::FsKey& fs, std::string* err);
+    // A program whose vertex shader does the GE's vertex work (GL hardware mode, hw_vertex.h).
+    const Program* getHw(const shadergen::HwVsKey& vs, const shadergen::FsKey& fs, std::string* err);
     const ProgramCacheStats& stats() const { return stats_; }
 
 private:
     struct Key {
         shadergen::VsKey vs;
+        shadergen::HwVsKey hw;  // zero for the CPU-vertex programs
         shadergen::FsKey fs;
+        u32 hwVertex;           // 1: the vertex shader is generateHwVertexShader(hw)
     };
     struct KeyHash {
         size_t operator()(const Key& k) const { return size_t(shadergen::hashBytes(&k, sizeof k)); }
@@ -45,7 +51,9 @@ private:
     struct KeyEq {
         bool operator()(const Key& a, const Key& b) const { return std::memcmp(&a, &b, sizeof a) == 0; }
     };
-    bool build(const std::string& vsSrc, const std::string& fsSrc, Program& out, std::string* err);
+    const Program* getImpl(const Key& key, std::string* err);
+    bool build(const std::string& vsSrc, const std::string& fsSrc, const std::string& gsSrc, Program& out,
+               std::string* err);
     bool loadBinary(const std::string& path, GLuint prog);
     void saveBinary(const std::string& path, GLuint prog);
     void lookupUniforms(Program& p);

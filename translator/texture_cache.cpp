@@ -2,6 +2,7 @@
 #include "translator/texture_cache.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "hle/texture_decoder.h"
 #include "shadergen/shader_keys.h"
@@ -109,13 +110,19 @@ void TextureCache::upload(const Memory& mem, const GeState& st, TextureEntry& e,
         height += h;
         e.hashes[l] = hashTextureLevel(mem, st, l);
     }
-    atlas_.assign(size_t(width) * size_t(height), 0);
+    atlas_.resize(size_t(width) * size_t(height));
     for (int l = 0; l < levelCount; ++l) {
         scratch_.clear();
         decodeTextureLevel(mem, st, l, scratch_);  // unreadable bytes decode as zero
-        const int w = e.placement[l][1], h = e.placement[l][2];
-        const size_t n = std::min(scratch_.size(), size_t(w) * size_t(h));
-        for (size_t i = 0; i < n; ++i) atlas_[size_t(e.placement[l][0] + int(i) / w) * size_t(width) + i % size_t(w)] = scratch_[i];
+        const size_t w = size_t(e.placement[l][1]), h = size_t(e.placement[l][2]);
+        // Row by row into the atlas; what the decoder did not produce, and the columns right of a
+        // narrower level, read as zero.
+        for (size_t y = 0; y < h; ++y) {
+            u32* row = &atlas_[(size_t(e.placement[l][0]) + y) * size_t(width)];
+            const size_t have = scratch_.size() > y * w ? std::min(w, scratch_.size() - y * w) : 0;
+            if (have) std::memcpy(row, &scratch_[y * w], have * sizeof(u32));
+            std::fill(row + have, row + width, 0u);
+        }
     }
     if (!e.tex) {
         gl.GenTextures(1, &e.tex);

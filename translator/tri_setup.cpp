@@ -1,5 +1,5 @@
 // Per-triangle records for exact interpolation (see tri_setup.h). Every number mirrors
-// softmodel/raster.cpp: rasterTriangle's oriented edges and sample offset, attribute order,
+// geometry/raster.cpp: rasterTriangle's oriented edges and sample offset, attribute order,
 // constant-attribute shortcuts, depth values and weight reciprocal; rasterRectangle's covered
 // box, orientation table and single-precision steps.
 #include "translator/tri_setup.h"
@@ -47,18 +47,18 @@ void putConstAttributes(TriRecord& r, u16 z, const u8 color[4], const u8 seconda
 
 }  // namespace
 
-void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, const soft::ScreenVertex& in1,
-                  const soft::ScreenVertex& in2, const soft::ScreenVertex& prov, TriRecord& r) {
+void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
+                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& r) {
     std::memset(&r, 0, sizeof r);
     u32 flags = T::kKindTriangle;
     if (rp.through) flags |= T::kFlagThrough;
     putF32(r, T::kHeader, 2, 0.0f);
     putF32(r, T::kHeader, 3, 1.0f);
-    putU32(r, T::kColors, 3, u32(soft::triangleSampleOffset()));
+    putU32(r, T::kColors, 3, u32(geo::triangleSampleOffset()));
     // rasterTriangle works on the clockwise (on screen) order v = in0, in2, in1 when the signed
     // area is negative; its edge functions follow v. Attributes are summed in the order o.
-    const soft::ScreenVertex* v[3] = {&in0, &in1, &in2};
-    const soft::ScreenVertex* o[3] = {&in0, &in1, &in2};
+    const geo::ScreenVertex* v[3] = {&in0, &in1, &in2};
+    const geo::ScreenVertex* o[3] = {&in0, &in1, &in2};
     s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
     if (area < 0) {
         std::swap(v[1], v[2]);
@@ -67,8 +67,8 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
         flags |= T::kFlagSwapped;
     }
     for (int i = 0; i < 3; ++i) {
-        const soft::ScreenVertex& a = *v[(i + 1) % 3];
-        const soft::ScreenVertex& b = *v[(i + 2) % 3];
+        const geo::ScreenVertex& a = *v[(i + 1) % 3];
+        const geo::ScreenVertex& b = *v[(i + 2) % 3];
         const s64 dx = s64(b.x) - a.x, dy = s64(b.y) - a.y;
         putI(r, T::kIA + i, -dy);
         putI(r, T::kIB + i, dx);
@@ -97,9 +97,9 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
     putDepths(r, o[0]->z, o[1]->z, o[2]->z);
     // Colours of o[], or the constant source (in0, or the provoking vertex when flat shading)
     // in every slot.
-    const soft::TriangleConstants same = soft::triangleConstants(rp, in0, in1, in2, prov);
+    const geo::TriangleConstants same = geo::triangleConstants(rp, in0, in1, in2, prov);
     const bool colConst = same.color, secConst = same.secondary;
-    const soft::ScreenVertex& cs = *same.source;
+    const geo::ScreenVertex& cs = *same.source;
     for (int i = 0; i < 3; ++i) {
         putU32(r, T::kColors, i, packColor((colConst ? cs : *o[i]).color, 4));
         putU32(r, T::kSecondary, i, packColor((secConst ? cs : *o[i]).secondary, 3));
@@ -116,14 +116,14 @@ void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, c
     putU32(r, T::kHeader, 0, flags);
 }
 
-bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
+bool packRectangle(const geo::RasterParams& rp, const geo::ScreenVertex& v0, const geo::ScreenVertex& v1,
                    TriRecord& r, int box[4]) {
     std::memset(&r, 0, sizeof r);
     putU32(r, T::kHeader, 0, T::kKindRect);
-    // Covered pixels and texture stepping exactly as rasterRectangle (soft::rectangleSetup); the
+    // Covered pixels and texture stepping exactly as rasterRectangle (geo::rectangleSetup); the
     // shader repeats its running sums (shader_gen.cpp exactTexInputs).
-    soft::RectSetup rs;
-    if (!soft::rectangleSetup(rp, v0, v1, rs)) return false;
+    geo::RectSetup rs;
+    if (!geo::rectangleSetup(rp, v0, v1, rs)) return false;
     box[0] = rs.px1, box[1] = rs.py1, box[2] = rs.px2, box[3] = rs.py2;
     putU32(r, T::kRectBox, 0, u32(rs.px1)), putU32(r, T::kRectBox, 1, u32(rs.py1));
     putU32(r, T::kRectBox, 2, u32(rs.px2)), putU32(r, T::kRectBox, 3, u32(rs.py2));
@@ -131,14 +131,14 @@ bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, c
     putF32(r, T::kRectStart, 2, rs.stxS), putF32(r, T::kRectStart, 3, rs.stxT);
     putF32(r, T::kRectRow, 0, rs.styS), putF32(r, T::kRectRow, 1, rs.styT);
     putF32(r, T::kRectRow, 2, rp.texW0), putF32(r, T::kRectRow, 3, rp.texH0);
-    putU32(r, T::kHeader, 1, rp.fog ? soft::fogToByte(v1.fog) : 255u);
+    putU32(r, T::kHeader, 1, rp.fog ? geo::fogToByte(v1.fog) : 255u);
     putF32(r, T::kHeader, 2, 0.0f);
     putF32(r, T::kHeader, 3, rp.needW ? v1.w : 1.0f);
     putConstAttributes(r, u16(v1.z), v1.color, v1.secondary);
     return true;
 }
 
-void packFragment(const soft::Fragment& f, TriRecord& r) {
+void packFragment(const geo::Fragment& f, TriRecord& r) {
     std::memset(&r, 0, sizeof r);
     putU32(r, T::kHeader, 0, T::kKindLinear);
     putF32(r, T::kRectStart, 0, f.s);

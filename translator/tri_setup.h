@@ -5,16 +5,16 @@
 // reference renderer) evaluates single-precision sums of vertex values (depth included, rounded)
 // weighted by exact edge functions, at its own sample point (16·x + 7), in its own vertex order.
 // These records carry the software rasteriser's own per-triangle numbers — its oriented edge
-// functions and sample offset (soft::triangleSampleOffset), the vertex depths in attribute
+// functions and sample offset (geo::triangleSampleOffset), the vertex depths in attribute
 // order, its attribute order, weight reciprocal and constant-attribute
 // shortcuts — and the fragment shader (shadergen emitExactHelpers) repeats rasterTriangle's
-// per-pixel arithmetic on them. Setup changes in softmodel/raster.cpp reach GL through the shared
+// per-pixel arithmetic on them. Setup changes in geometry/raster.cpp reach GL through the shared
 // functions; a change to the per-pixel formulas must be mirrored in shader_gen.cpp (the GlParity
 // tests fail until it is).
 #pragma once
+#include "geometry/raster.h"
 #include "hle/types.h"
 #include "shadergen/shader_gen.h"
-#include "softmodel/raster.h"
 
 namespace ge::gl {
 
@@ -22,15 +22,15 @@ struct TriRecord {
     u32 w[shadergen::tri::kTexels * 4];
 };
 
-// Triangle (in0, in1, in2) with flat-shading colour `prov`, as soft::rasterTriangle sees it.
-void packTriangle(const soft::RasterParams& rp, const soft::ScreenVertex& in0, const soft::ScreenVertex& in1,
-                  const soft::ScreenVertex& in2, const soft::ScreenVertex& prov, TriRecord& out);
-// Rectangle from two corners, as soft::rasterRectangle sees it (both GL triangles get this record).
+// Triangle (in0, in1, in2) with flat-shading colour `prov`, as geo::rasterTriangle sees it.
+void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
+                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& out);
+// Rectangle from two corners, as geo::rasterRectangle sees it (both GL triangles get this record).
 // False when it covers no pixel; else `box` gets the covered pixels, inclusive (x1, y1, x2, y2):
 // the GL quad must cover exactly those.
-bool packRectangle(const soft::RasterParams& rp, const soft::ScreenVertex& v0, const soft::ScreenVertex& v1,
+bool packRectangle(const geo::RasterParams& rp, const geo::ScreenVertex& v0, const geo::ScreenVertex& v1,
                    TriRecord& out, int box[4]);
 // One finished fragment (lines and points come from the software rasteriser as fragments).
-void packFragment(const soft::Fragment& f, TriRecord& out);
+void packFragment(const geo::Fragment& f, TriRecord& out);
 
 }  // namespace ge::gl

@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "hle/spline.h"
-#include "softmodel/assembly.h"
-#include "softmodel/clip.h"
+#include "geometry/assembly.h"
+#include "geometry/clip.h"
+#include "geometry/spline.h"
 
 namespace ge::gl {
 
@@ -15,7 +15,7 @@ namespace {
 
 constexpr size_t kFragmentBuffer = 1024;
 
-GlVertex toGl(const soft::ScreenVertex& v, bool perspective) {
+GlVertex toGl(const geo::ScreenVertex& v, bool perspective) {
     GlVertex g;
     g.x = float(v.x) / 16.0f;
     g.y = float(v.y) / 16.0f;
@@ -109,8 +109,8 @@ VertexSettings VertexSettings::fromState(const GeState& st) {
     return vs;
 }
 
-soft::RasterParams VertexPipeline::rasterParams() const {
-    soft::RasterParams rp;
+geo::RasterParams VertexPipeline::rasterParams() const {
+    geo::RasterParams rp;
     rp.clipX1 = vs_.clip[0], rp.clipY1 = vs_.clip[1], rp.clipX2 = vs_.clip[2], rp.clipY2 = vs_.clip[3];
     rp.gouraud = vs_.gouraud;
     rp.textured = vs_.texture;
@@ -123,8 +123,8 @@ soft::RasterParams VertexPipeline::rasterParams() const {
     return rp;
 }
 
-bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
-                            const soft::ScreenVertex& c) const {
+bool VertexPipeline::culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
+                            const geo::ScreenVertex& c) const {
     // Positive area = clockwise on screen (y down); CULL 0 culls clockwise, 1 counter-clockwise
     // (ref §3.6). Zero-area triangles are never culled: they draw the samples they pass through,
     // as in the software model (see emitTriangle).
@@ -133,13 +133,13 @@ bool VertexPipeline::culled(const soft::ScreenVertex& a, const soft::ScreenVerte
     return vs_.cullCcw ? area < 0 : area > 0;
 }
 
-bool VertexPipeline::notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
-                                   const soft::ScreenVertex& c, const soft::ScreenVertex& prov) {
-    const soft::ScreenVertex* v[3] = {&a, &b, &c};
+bool VertexPipeline::notePrimitive(geo::PrimKind kind, const geo::ScreenVertex& a, const geo::ScreenVertex& b,
+                                   const geo::ScreenVertex& c, const geo::ScreenVertex& prov) {
+    const geo::ScreenVertex* v[3] = {&a, &b, &c};
     int y1, y2;
-    const soft::RasterParams rp = rasterParams();
-    if (!soft::primitiveRows(rp, kind, v, y1, y2)) return true;  // wholly outside: draws nothing
-    const u64 bound = soft::primitivePixelBound(rp, kind, v, y1, y2);
+    const geo::RasterParams rp = rasterParams();
+    if (!geo::primitiveRows(rp, kind, v, y1, y2)) return true;  // wholly outside: draws nothing
+    const u64 bound = geo::primitivePixelBound(rp, kind, v, y1, y2);
     if (bound > pixelBudgetLeft_) {  // the GE-time limit reached into this draw (as the software model):
         pixelBudgetLeft_ = 0;        // dropped but charged
         pixelWork_ += bound;
@@ -148,22 +148,22 @@ bool VertexPipeline::notePrimitive(soft::PrimKind kind, const soft::ScreenVertex
     pixelBudgetLeft_ -= bound;
     pixelWork_ += bound;
     if (!alphaFull_) return true;
-    const bool perVertex = vs_.gouraud && kind != soft::PrimKind::Rect;
+    const bool perVertex = vs_.gouraud && kind != geo::PrimKind::Rect;
     if (prov.color[3] != 255) alphaFull_ = false;
     if (perVertex && (a.color[3] != 255 || b.color[3] != 255 || c.color[3] != 255)) alphaFull_ = false;
     return true;
 }
 
-void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b,
-                                  const soft::ScreenVertex& c, const soft::ScreenVertex& prov, int joinPrev) {
-    if (!notePrimitive(soft::PrimKind::Triangle, a, b, c, prov)) return;
+void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
+                                  const geo::ScreenVertex& c, const geo::ScreenVertex& prov, int joinPrev) {
+    if (!notePrimitive(geo::PrimKind::Triangle, a, b, c, prov)) return;
     if (s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x) == 0) {
         // A zero-area triangle covers only samples exactly on its line, with the reference's
-        // degenerate attributes (softmodel/raster.cpp rasterZeroAreaTriangle): the software
+        // degenerate attributes (geometry/raster.cpp rasterZeroAreaTriangle): the software
         // rasteriser decides them and each becomes a one-pixel quad, as lines do.
         fragBuf_.resize(kFragmentBuffer);
-        soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-        soft::rasterTriangle(rasterParams(), a, b, c, prov, soft::Band{}, sink);
+        geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+        geo::rasterTriangle(rasterParams(), a, b, c, prov, geo::Band{}, sink);
         sink.flush();
         return;
     }
@@ -172,7 +172,7 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
     // The software rasteriser samples triangles at 16·x + o (raster.h triangleSampleOffset), GL
     // at the pixel centre 16·x + 8: moving the triangle by (8 − o)/16 pixel (exact in float on
     // the 1/16 grid) makes GL cover the same pixels.
-    const float shift = float(8 - soft::triangleSampleOffset()) / 16.0f;
+    const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
     for (GlVertex& v : g) v.x += shift, v.y += shift;
     if (!vs_.gouraud) {
         // Flat shading: the provoking (last) vertex's colours (ref §8.1).
@@ -192,13 +192,32 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
     // test (its top-left rule on the exact edge functions) and discards what that excludes. GL
     // then only has to cover a superset: the triangle is grown by a small margin, so that neither
     // GL's own tie rule nor its clipping of triangles reaching outside the target (which moves
-    // their edges by rounding) can lose a pixel on an edge. A bevelled (hexagon) shape is drawn
-    // as a fan of four triangles sharing the record.
+    // their edges by rounding) can lose a pixel on an edge.
     GlVertex grown[6];
-    const int n = growTriangle(g, grown);
+    int n = growTriangle(g, grown);
     TriRecord rec;
     packTriangle(rasterParams(), a, b, c, prov, rec);
     PrimBounds bb = boundsOf(grown, n);
+    if (n == 6) {
+        // A needle-thin triangle's bevelled hexagon, drawn as a fan, had sliver triangles (two
+        // points 1/8 pixel apart, the third hundreds of pixels away) whose orientation GL's
+        // subpixel snapping can flip: a flipped sliver covers its neighbours' pixels, so a pixel
+        // got two or three fragments — blended two or three times where the shader reads the
+        // destination (framebuffer fetch, texture barrier; found by `ge2gl fuzz`, seed 2000953).
+        // The hexagon's bounding rectangle on whole pixels is drawn instead: its corners are exact
+        // in float and on any subpixel grid, and its two triangles cover each pixel once. The edge
+        // test discards the rest; the bevel case is rare (corners sharper than the miter limit).
+        float x0 = grown[0].x, x1 = x0, y0 = grown[0].y, y1 = y0;
+        for (int i = 1; i < 6; ++i) {
+            x0 = std::min(x0, grown[i].x), x1 = std::max(x1, grown[i].x);
+            y0 = std::min(y0, grown[i].y), y1 = std::max(y1, grown[i].y);
+        }
+        auto whole = [](float f) { return std::clamp(f, -70000.0f, 70000.0f); };
+        x0 = whole(std::floor(x0)), y0 = whole(std::floor(y0)), x1 = whole(std::ceil(x1)), y1 = whole(std::ceil(y1));
+        const float corner[4][2] = {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+        for (int i = 0; i < 4; ++i) grown[i] = g[0], grown[i].x = corner[i][0], grown[i].y = corner[i][1];
+        n = 4;
+    }
     for (int k = 1; k + 1 < n; ++k) {
         const GlVertex t[3] = {grown[0], grown[k], grown[k + 1]};
         out_->tris.insert(out_->tris.end(), t, t + 3);
@@ -208,22 +227,21 @@ void VertexPipeline::emitTriangle(const soft::ScreenVertex& a, const soft::Scree
     }
 }
 
-void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
-    if (!notePrimitive(soft::PrimKind::Rect, v0, v1, v1, v1)) return;
+void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
+    if (!notePrimitive(geo::PrimKind::Rect, v0, v1, v1, v1)) return;
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
     if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ref §8.11)
     // Texture orientation from where v0 lies relative to v1 (ref §8.2 table); colour, Z and fog
-    // from the second vertex; coordinates linear across the rectangle (w = 1). Covering
-    // [x1, x2) × [y1, y2) is exactly GL's top-left rule on the two triangles.
+    // from the second vertex; coordinates linear across the rectangle (w = 1).
     const bool left = v0.x < v1.x, above = v0.y < v1.y;
     auto corner = [&](int fx, int fy) {
-        soft::ScreenVertex c = v1;
+        geo::ScreenVertex c = v1;
         c.x = fx ? xr : xl;
         c.y = fy ? yb : yt;
         c.w = 1.0f;
-        const soft::ScreenVertex* sFrom;
-        const soft::ScreenVertex* tFrom;
+        const geo::ScreenVertex* sFrom;
+        const geo::ScreenVertex* tFrom;
         if (left && above) sFrom = fx ? &v1 : &v0, tFrom = fy ? &v1 : &v0;
         else if (left) sFrom = fy ? &v0 : &v1, tFrom = fx ? &v1 : &v0;
         else if (above) sFrom = fy ? &v1 : &v0, tFrom = fx ? &v0 : &v1;
@@ -243,6 +261,28 @@ void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVe
         tl.y = tr.y = float(box[1]), bl.y = br.y = float(box[3] + 1);
         out_->records.push_back(rec);
         out_->records.push_back(rec);
+    } else {
+        // GL's top-left rule on [x1, x2) × [y1, y2) covers what the reference covers except where
+        // a far edge lies exactly on a pixel centre: the reference's 2×2 walk then also draws that
+        // pixel when it is the odd one of a pair (geo::rectangleSetup; transform-mode sprites and
+        // float positions at .5, found by `ge2gl fuzz --gl-mode hw`, seed 266). The quad is moved
+        // to the reference's pixel box, its texture coordinates extended along the same linear map.
+        geo::RectSetup rs;
+        if (!geo::rectangleSetup(rasterParams(), v0, v1, rs)) return;
+        const GlVertex otl = tl, otr = tr, obl = bl, obr = br;
+        auto at = [&](float x, float y) {
+            const float u = (x - otl.x) / (otr.x - otl.x), v = (y - otl.y) / (obl.y - otl.y);
+            GlVertex g = otl;
+            g.x = x, g.y = y;
+            for (int k = 0; k < 4; ++k) {
+                const float top = otl.tex[k] + (otr.tex[k] - otl.tex[k]) * u;
+                const float bottom = obl.tex[k] + (obr.tex[k] - obl.tex[k]) * u;
+                g.tex[k] = top + (bottom - top) * v;
+            }
+            return g;
+        };
+        const float x0 = float(rs.px1), x1 = float(rs.px2 + 1), y0 = float(rs.py1), y1 = float(rs.py2 + 1);
+        tl = at(x0, y0), tr = at(x1, y0), bl = at(x0, y1), br = at(x1, y1);
     }
     GlVertex q[6] = {tl, tr, bl, tr, br, bl};
     out_->tris.insert(out_->tris.end(), q, q + 6);
@@ -252,11 +292,11 @@ void VertexPipeline::emitRect(const soft::ScreenVertex& v0, const soft::ScreenVe
     out_->triBounds.push_back(bb);
 }
 
-void VertexPipeline::sinkFlush(void* ctx, const soft::Fragment* f, size_t n) {
+void VertexPipeline::sinkFlush(void* ctx, const geo::Fragment* f, size_t n) {
     static_cast<VertexPipeline*>(ctx)->emitFragments(f, n);
 }
 
-void VertexPipeline::emitFragments(const soft::Fragment* f, size_t n) {
+void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
     // Each fragment of a line or point becomes a one-pixel quad with the fragment's attributes:
     // the GE's line DDA (shared with the software model) decides coverage, not GL.
     for (size_t i = 0; i < n; ++i) {
@@ -289,20 +329,20 @@ void VertexPipeline::emitFragments(const soft::Fragment* f, size_t n) {
 }
 
 void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
-    const soft::ClipVertex& a = cverts_[ia];
-    const soft::ClipVertex& b = cverts_[ib];
-    const soft::ClipVertex& c = cverts_[ic];
-    const soft::ClipVertex* v[3] = {&a, &b, &c};
-    if (!a.valid || !b.valid || !c.valid || soft::discardPrimitive(ts_, v, 3)) return;
+    const geo::ClipVertex& a = cverts_[ia];
+    const geo::ClipVertex& b = cverts_[ib];
+    const geo::ClipVertex& c = cverts_[ic];
+    const geo::ClipVertex* v[3] = {&a, &b, &c};
+    if (!a.valid || !b.valid || !c.valid || geo::discardPrimitive(ts_, v, 3)) return;
     if (!ts_.through) {
         if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ref §8.5
         // Near clipping whatever CLE says, as the software model (ge-reference §8.5).
-        if (soft::beyondNear(a) || soft::beyondNear(b) || soft::beyondNear(c)) {
-            // Clipped in the reference's vertex order (the strip/fan ring, softmodel/clip.h).
-            const bool reversed = ring && soft::ringReversed(ring, ia, ib);
-            soft::ClipVertex poly[4];
-            const int n = ring ? soft::clipTriangleNear(ts_, cverts_[ring[0]], cverts_[ring[1]], cverts_[ring[2]], poly)
-                               : soft::clipTriangleNear(ts_, a, b, c, poly);
+        if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
+            // Clipped in the reference's vertex order (the strip/fan ring, geometry/clip.h).
+            const bool reversed = ring && geo::ringReversed(ring, ia, ib);
+            geo::ClipVertex poly[4];
+            const int n = ring ? geo::clipTriangleNear(ts_, cverts_[ring[0]], cverts_[ring[1]], cverts_[ring[2]], poly)
+                               : geo::clipTriangleNear(ts_, a, b, c, poly);
             int join = 0;
             for (int k = 1; k + 1 < n; ++k) {
                 const int k1 = reversed ? k + 1 : k, k2 = reversed ? k : k + 1;  // primitive's winding
@@ -322,8 +362,8 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
 }
 
 void VertexPipeline::rectangle(u32 ia, u32 ib) {
-    const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
-    if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
+    const geo::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
+    if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(ts_, v, 2)) return;
     if (ts_.rectAsTriangles) {
         rectangleAsTriangles(v[0]->sv, v[1]->sv);
         return;
@@ -331,53 +371,53 @@ void VertexPipeline::rectangle(u32 ia, u32 ib) {
     emitRect(v[0]->sv, v[1]->sv);
 }
 
-void VertexPipeline::rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1) {
+void VertexPipeline::rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
     // Rectangles with texture projection are two triangles (ref §8.2), as in the software model.
     if (v0.x == v1.x || v0.y == v1.y) return;
-    const soft::ScreenVertex tl = soft::rectangleCorner(v0, v1, 0, 0), tr = soft::rectangleCorner(v0, v1, 1, 0);
-    const soft::ScreenVertex bl = soft::rectangleCorner(v0, v1, 0, 1), br = soft::rectangleCorner(v0, v1, 1, 1);
+    const geo::ScreenVertex tl = geo::rectangleCorner(v0, v1, 0, 0), tr = geo::rectangleCorner(v0, v1, 1, 0);
+    const geo::ScreenVertex bl = geo::rectangleCorner(v0, v1, 0, 1), br = geo::rectangleCorner(v0, v1, 1, 1);
     emitTriangle(tl, tr, bl, bl, 0);
     emitTriangle(tr, br, bl, bl, 1);
 }
 
 bool VertexPipeline::quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
-    // The software model's rule (softmodel/assembly.h, shared).
-    const soft::ClipVertex* d[4] = {&cverts_[q[0]], &cverts_[q[1]], &cverts_[q[2]], &cverts_[q[3]]};
+    // The software model's rule (geometry/assembly.h, shared).
+    const geo::ClipVertex* d[4] = {&cverts_[q[0]], &cverts_[q[1]], &cverts_[q[2]], &cverts_[q[3]]};
     int itl = 0, ibr = 0;
-    if (!(fan ? soft::fanQuadAsRect(rectDetect_, d, itl, ibr) : soft::stripQuadAsRect(rectDetect_, d, itl, ibr)))
+    if (!(fan ? geo::fanQuadAsRect(rectDetect_, d, itl, ibr) : geo::stripQuadAsRect(rectDetect_, d, itl, ibr)))
         return false;
     tl = q[itl], br = q[ibr];
     return true;
 }
 
 void VertexPipeline::line(u32 ia, u32 ib) {
-    const soft::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
-    if (!v[0]->valid || !v[1]->valid || soft::discardPrimitive(ts_, v, 2)) return;
-    soft::ClipVertex a = *v[0], b = *v[1];
-    if (!ts_.through && (soft::beyondNear(a) || soft::beyondNear(b)))
-        if (!soft::clipLineNear(ts_, a, b)) return;
-    if (!notePrimitive(soft::PrimKind::Line, a.sv, b.sv, b.sv, b.sv)) return;
+    const geo::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
+    if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(ts_, v, 2)) return;
+    geo::ClipVertex a = *v[0], b = *v[1];
+    if (!ts_.through && (geo::beyondNear(a) || geo::beyondNear(b)))
+        if (!geo::clipLineNear(ts_, a, b)) return;
+    if (!notePrimitive(geo::PrimKind::Line, a.sv, b.sv, b.sv, b.sv)) return;
     fragBuf_.resize(kFragmentBuffer);
-    soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-    soft::rasterLine(rasterParams(), a.sv, b.sv, soft::Band{}, sink);
+    geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+    geo::rasterLine(rasterParams(), a.sv, b.sv, geo::Band{}, sink);
     sink.flush();
 }
 
 void VertexPipeline::point(u32 ia) {
-    const soft::ClipVertex* v[1] = {&cverts_[ia]};
-    if (!v[0]->valid || soft::discardPrimitive(ts_, v, 1)) return;
-    if (!notePrimitive(soft::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv)) return;
+    const geo::ClipVertex* v[1] = {&cverts_[ia]};
+    if (!v[0]->valid || geo::discardPrimitive(ts_, v, 1)) return;
+    if (!notePrimitive(geo::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv)) return;
     fragBuf_.resize(kFragmentBuffer);
-    soft::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-    soft::rasterPoint(rasterParams(), v[0]->sv, soft::Band{}, sink);
+    geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
+    geo::rasterPoint(rasterParams(), v[0]->sv, geo::Band{}, sink);
     sink.flush();
 }
 
 void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-    // The software model's walk (softmodel/assembly.h), so both backends build the same
+    // The software model's walk (geometry/assembly.h), so both backends build the same
     // primitives in the same vertex order.
     std::vector<u32> keep;
-    soft::assemblePrimitives(prim, seq, rectDetect_.allowed && !vs_.cull, stripOdd_, *this, keep);
+    geo::assemblePrimitives(prim, seq, rectDetect_.allowed && !vs_.cull, stripOdd_, *this, keep);
     if (keepPending) {
         pending_.clear();
         for (u32 k : keep) pending_.push_back(cverts_[k]);
@@ -396,7 +436,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
         stripOdd_ = false;
     }
     VertexReader reader(mem, st, p.vtype);
-    ts_ = soft::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
+    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
     // The still-open vertices of the previous PRIM come first (type 7, ref §3.2).
     cverts_.assign(pending_.begin(), pending_.end());
     std::vector<u32> indices;
@@ -406,11 +446,11 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
         return false;
     }
     const bool skin = reader.hasWeights() && !reader.through();
-    auto process = [&](u32 index, soft::ClipVertex& cv) {
+    auto process = [&](u32 index, geo::ClipVertex& cv) {
         DecodedVertex dv;
         const bool ok = reader.read(p.vertexAddr, index, dv);
         if (ok && skin) applySkinning(st, p.vtype, dv);
-        soft::transformVertex(ts_, dv, cv);
+        geo::transformVertex(ts_, dv, cv);
         cv.valid = ok && reader.hasPosition();  // no position: dropped (ref §8.11)
     };
     seq_.clear();
@@ -435,10 +475,49 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
             }
         }
     }
-    rectDetect_ = soft::RectDetect::fromState(st, ts_.through, st.TME_on(), pending_.empty());
+    rectDetect_ = geo::RectDetect::fromState(st, ts_.through, st.TME_on(), pending_.empty());
     assemble(p.prim, seq_, true);
     rectDetect_.allowed = false;
     return true;
+}
+
+void VertexPipeline::keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p) {
+    pending_.clear();
+    stripOdd_ = false;
+    pendingPrim_ = p.prim;
+    VertexReader reader(mem, st, p.vtype);
+    std::vector<u32> indices;
+    if (!reader.readIndices(p.indexAddr, p.count, indices)) return;
+    const size_t n = indices.size();
+    // geometry/assembly.h assemblePrimitives' `keep` for a fresh PRIM without rectangle detection
+    // (GPU draws never have it): list leftovers, the strip's last two (parity flipped per
+    // triangle), the fan's centre and last vertex.
+    std::vector<size_t> open;
+    switch (p.prim) {
+        case GE_PRIM_TRIANGLES:
+            for (size_t i = n - n % 3; i < n; ++i) open.push_back(i);
+            break;
+        case GE_PRIM_TRIANGLE_STRIP:
+            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) open.push_back(i);
+            stripOdd_ = n > 2 && ((n - 2) & 1);
+            break;
+        case GE_PRIM_TRIANGLE_FAN:
+            if (n >= 2) open = {0, n - 1};
+            else if (n == 1) open = {0};
+            break;
+        default: return;
+    }
+    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
+    const bool skin = reader.hasWeights() && !reader.through();
+    for (size_t i : open) {
+        DecodedVertex dv;
+        geo::ClipVertex cv;
+        const bool ok = reader.read(p.vertexAddr, indices[i], dv);
+        if (ok && skin) applySkinning(st, p.vtype, dv);
+        geo::transformVertex(ts_, dv, cv);
+        cv.valid = ok && reader.hasPosition();
+        pending_.push_back(cv);
+    }
 }
 
 bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
@@ -448,15 +527,15 @@ bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const Pa
     out_ = &out;
     alphaFull_ = true;
     pending_.clear();
-    TessOutput tess;
-    if (!tessellatePatch(mem, st, p, tess, err)) return false;
+    geo::TessOutput tess;
+    if (!geo::tessellatePatch(mem, st, p, tess, err)) return false;
     if (tess.verts.empty()) return true;
     VertexReader reader(mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (ref §3.2).
-    ts_ = soft::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal() || st.LTE_on());
+    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal() || st.LTE_on());
     cverts_.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
-        soft::transformVertex(ts_, tess.verts[i], cverts_[i]);
+        geo::transformVertex(ts_, tess.verts[i], cverts_[i]);
         cverts_[i].valid = true;
     }
     seq_.clear();
@@ -475,9 +554,9 @@ void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, con
     out_ = &out;
     alphaFull_ = true;
     // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
-    ts_ = soft::TransformState{};
+    ts_ = geo::TransformState{};
     ts_.through = true;
-    soft::immediateVertices(st, p.vertices, cverts_, seq_);
+    geo::immediateVertices(st, p.vertices, cverts_, seq_);
     const bool odd = stripOdd_;
     stripOdd_ = false;
     assemble(p.prim, seq_, false);

@@ -1,27 +1,28 @@
-// CPU vertex processing for the GL path: decode (shared decoder), then the software model's
-// reference transform, lighting, texture-coordinate generation, fog, clipping and discard rules
-// (softmodel/transform.h, clip.h), then primitive assembly into GL-ready vertices in drawing
-// coordinates.
+// CPU vertex processing for the GL path: decode (shared decoder), then the reference transform,
+// lighting, texture-coordinate generation, fog, clipping and discard rules the software model runs
+// too (geometry/transform.h, clip.h), then primitive assembly (geometry/assembly.h) into GL-ready
+// vertices in drawing coordinates.
 //
 // Why on the CPU: the GE rounds screen positions to 1/16 pixel (ref §8.1), drops rather than
 // clips primitives outside the 4096² screen (§8.5), lights in fixed point (§8.3) and decides
 // rectangles' texture orientation from vertex order (§8.2) — none of which a GL vertex shader
-// reproduces exactly. Sharing the software model's code keeps both backends' geometry identical
-// (style-anchors §8.8: one reference implementation). GL then only rasterises triangles, with
-// positions already on the GE's grid; its fill convention equals the GE's top-left rule.
-// Lines and points use the software model's rasteriser (GL line rules differ from the GE's DDA):
-// each of their fragments becomes a one-pixel quad carrying that fragment's exact attributes.
+// reproduces exactly. Sharing geometry/ with the software model keeps both backends' geometry
+// identical (style-anchors §8.8: one reference implementation). GL then only rasterises
+// triangles, with positions already on the GE's grid; its fill convention equals the GE's
+// top-left rule. Lines and points use the software model's rasteriser, geometry/raster.h (GL line
+// rules differ from the GE's DDA): each of their fragments becomes a one-pixel quad carrying that
+// fragment's exact attributes.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "geometry/assembly.h"
+#include "geometry/raster.h"
+#include "geometry/transform.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
 #include "hle/vertex_decoder.h"
-#include "softmodel/assembly.h"
-#include "softmodel/raster.h"
-#include "softmodel/transform.h"
 #include "translator/tri_setup.h"
 
 namespace ge::gl {
@@ -79,9 +80,13 @@ public:
     // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ref §3.2).
     bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
                      Geometry& out, std::string* err);
-    // Tessellated patch (hle/spline.h) through the same path.
+    // Tessellated patch (geometry/spline.h) through the same path.
     bool processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
                       Geometry& out, std::string* err);
+    // A fresh triangle/strip/fan PRIM drawn elsewhere (the GPU vertex path): keeps what a PRIM
+    // type 7 continuation after it needs — its still-open vertices, transformed, and the strip
+    // parity — exactly as processPrim's walk would have left them (ref §3.2).
+    void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p);
     // Immediate vertices, already in drawing coordinates (ref §3.12).
     void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
     // After a process* call: whether every primary colour of its primitives that reaches a
@@ -94,47 +99,47 @@ public:
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
-    // Primitive callbacks of soft::assemblePrimitives (the walk shared with the software model).
+    // Primitive callbacks of geo::assemblePrimitives (the walk shared with the software model).
     template <class Sink>
-    friend void soft::assemblePrimitives(GePrimType, const std::vector<u32>&, bool, bool&, Sink&, std::vector<u32>&);
+    friend void geo::assemblePrimitives(GePrimType, const std::vector<u32>&, bool, bool&, Sink&, std::vector<u32>&);
     void triangle(u32 a, u32 b, u32 c, const u32* ring = nullptr);
     void rectangle(u32 a, u32 b);
     void line(u32 a, u32 b);
     void point(u32 a);
-    void emitTriangle(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c,
-                      const soft::ScreenVertex& prov, int joinPrev);
-    void emitRect(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
-    void rectangleAsTriangles(const soft::ScreenVertex& v0, const soft::ScreenVertex& v1);
+    void emitTriangle(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c,
+                      const geo::ScreenVertex& prov, int joinPrev);
+    void emitRect(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1);
+    void rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1);
     bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const;
-    void emitFragments(const soft::Fragment* f, size_t n);
-    bool culled(const soft::ScreenVertex& a, const soft::ScreenVertex& b, const soft::ScreenVertex& c) const;
-    soft::RasterParams rasterParams() const;
+    void emitFragments(const geo::Fragment* f, size_t n);
+    bool culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c) const;
+    geo::RasterParams rasterParams() const;
     // Per primitive the backend draws: its pixel bound (pixelWork) and its colours (drawAlphaFull).
     // False: the pixel budget is used up, the primitive is dropped.
-    bool notePrimitive(soft::PrimKind kind, const soft::ScreenVertex& a, const soft::ScreenVertex& b,
-                       const soft::ScreenVertex& c, const soft::ScreenVertex& prov);
-    static void sinkFlush(void* ctx, const soft::Fragment* f, size_t n);
+    bool notePrimitive(geo::PrimKind kind, const geo::ScreenVertex& a, const geo::ScreenVertex& b,
+                       const geo::ScreenVertex& c, const geo::ScreenVertex& prov);
+    static void sinkFlush(void* ctx, const geo::Fragment* f, size_t n);
 
     // Per-draw context (valid during one process* call).
     const GeState* st_ = nullptr;
     VertexSettings vs_;
-    soft::TransformState ts_;
+    geo::TransformState ts_;
     Geometry* out_ = nullptr;
     bool alphaFull_ = true;
     u64 pixelWork_ = 0;
     u64 pixelBudgetLeft_ = ~u64(0);
 
     std::vector<DecodedVertex> decoded_;
-    std::vector<soft::ClipVertex> cverts_;
+    std::vector<geo::ClipVertex> cverts_;
     std::vector<u32> seq_;
     // PRIM type 7: vertices still open from the previous draw and the strip parity.
-    std::vector<soft::ClipVertex> pending_;
+    std::vector<geo::ClipVertex> pending_;
     GePrimType pendingPrim_ = GE_PRIM_POINTS;
     bool stripOdd_ = false;
-    std::vector<soft::Fragment> fragBuf_;
-    // Strip/fan-as-rectangle detection, shared with the software model (softmodel/assembly.h):
+    std::vector<geo::Fragment> fragBuf_;
+    // Strip/fan-as-rectangle detection, shared with the software model (geometry/assembly.h):
     // allowed only for a fresh PRIM, with what the comparison needs from the state.
-    soft::RectDetect rectDetect_;
+    geo::RectDetect rectDetect_;
 };
 
 }  // namespace ge::gl

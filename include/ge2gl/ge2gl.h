@@ -12,14 +12,27 @@
  * - Every function returns a ge2gl_status. 0 is success. Failures of the sceGe functions are the
  *   PSP kernel error codes the firmware returns (GE2GL_SCE_ERROR_*), so an HLE can hand the value
  *   to the game unchanged; failures of the API itself are small negative numbers (GE2GL_ERR_*).
- *   ge2gl_last_message() explains the last failure on a handle.
+ *   ge2gl_last_message() explains the last failure on a handle; ge2gl_last_message(NULL) explains
+ *   the calling thread's last failed ge2gl_create().
  * - Results come back through out-parameters (list IDs, sync states, register values).
  * - Nothing runs behind the host's back: by default the GE executes only inside ge2gl_run() and
  *   the wait modes of the sync functions, on the calling thread. Callbacks are delivered from
  *   inside those calls and may call back into the API (update a stall address, enqueue, break,
  *   continue); a wait or run from inside a callback returns GE2GL_ERR_REENTRANT.
  * - With config.worker_thread the GE runs on a ge2gl thread instead; callbacks then arrive on
- *   that thread. All functions are safe to call from any thread in that mode.
+ *   that thread. Callbacks never run with a ge2gl lock held. All functions are safe to call from
+ *   any thread (GL_CURRENT: see Threads and GL below).
+ * - Threads and GL (docs/plugin-api.md, "Threads"): calls on one handle are serialised. A headless
+ *   GL context is made current on the calling thread for the duration of a call and the thread's
+ *   previous context restored, so any thread may call. GL_CURRENT draws on the host's context:
+ *   calls that need GL from a thread other than the creating one fail with GE2GL_ERR_WRONG_THREAD.
+ * - GL state (GL_CURRENT): every binding and setting ge2gl changes is restored before a call
+ *   returns; ge2gl sets what it needs on entry and never relies on what it left.
+ * - Memory (docs/plugin-api.md, "Coherence"): after a list completes and whenever a sync returns,
+ *   guest VRAM holds what was drawn (config.lazy_writeback defers that to ge2gl_sync_range). Guest
+ *   memory the CPU wrote is noticed without ge2gl_mem_written: textures and CLUT-indexed data by
+ *   hashing on use after every enqueue, continue and stall update, frame and depth buffers by a
+ *   hash check before the GE draws over them.
  * - Guest addresses are PSP addresses (0x08800000, 0x44000000, ...). Bad addresses, IDs or sizes
  *   give a status code and change nothing.
  */
@@ -46,7 +59,7 @@ extern "C" {
 /* API version: major in bits 31..16, minor in 15..0. A host built against major M works with any
  * library of major M and a minor at least its own. */
 #define GE2GL_API_VERSION_MAJOR 1
-#define GE2GL_API_VERSION_MINOR 0
+#define GE2GL_API_VERSION_MINOR 2
 #define GE2GL_API_VERSION ((uint32_t)((GE2GL_API_VERSION_MAJOR << 16) | GE2GL_API_VERSION_MINOR))
 
 typedef struct ge2gl_context ge2gl_context; /* opaque handle */
@@ -66,6 +79,8 @@ typedef int32_t ge2gl_status;
 #define GE2GL_ERR_MEMORY (-8)           /* guest address range outside RAM/VRAM/scratchpad */
 #define GE2GL_ERR_OUT_OF_HOST_MEMORY (-9)
 #define GE2GL_ERR_UNSUPPORTED (-10)     /* e.g. a GL texture from the software backend */
+#define GE2GL_ERR_WRONG_THREAD (-11)    /* GL work asked on a thread that cannot reach the host's
+                                           GL context (GL_CURRENT: not the creating thread) */
 /* PSP kernel error codes returned by the sceGe functions (values as on hardware). */
 #define GE2GL_SCE_ERROR_INVALID_STATE ((ge2gl_status)0x80000004u)
 #define GE2GL_SCE_ERROR_ALREADY ((ge2gl_status)0x80000020u)
@@ -86,6 +101,10 @@ typedef int32_t ge2gl_status;
 #define GE2GL_BACKEND_GL_CURRENT 2  /* OpenGL on the context the host made current */
 #define GE2GL_BACKEND_GL_HEADLESS 3 /* OpenGL on a context ge2gl creates (OSMesa/EGL) */
 
+/* GL backends' mode (config.gl_mode, API 1.1). */
+#define GE2GL_GL_MODE_EXACT 0 /* the software model's rasteriser arithmetic per pixel, 1x only */
+#define GE2GL_GL_MODE_HW 1    /* native GL rasterisation at config.render_scale */
+
 /* sceGeListSync / sceGeDrawSync peek results. */
 #define GE2GL_LIST_COMPLETED 0
 #define GE2GL_LIST_QUEUED 1
@@ -104,6 +123,8 @@ typedef int32_t ge2gl_status;
 #define GE2GL_GE_PAUSED 3  /* the current list is paused (break, signal pause, head enqueue) */
 #define GE2GL_GE_HUNG 4    /* END without SIGNAL/FINISH: the list never finishes (reset with
                               ge2gl_break(h, 1, NULL)) */
+#define GE2GL_GE_INTERRUPT 5 /* config.hold_interrupts: a signal or finish callback was delivered
+                                and the GE waits for ge2gl_interrupt_ack() */
 
 /* Frame-buffer pixel formats (CMD_FPF codes). */
 #define GE2GL_FORMAT_565 0
@@ -125,7 +146,9 @@ typedef struct ge2gl_interrupt {
     uint32_t func_arg;   /* its second argument */
 } ge2gl_interrupt;
 
-/* Host callbacks; every pointer may be NULL. They run on the thread that runs the GE. */
+/* Host callbacks; every pointer may be NULL. They run on the thread that runs the GE (inside
+   ge2gl_run or a wait, or on the worker) with no ge2gl lock held: a callback may call ge2gl
+   (except run and the wait syncs) and may block on another thread of the host that calls ge2gl. */
 typedef struct ge2gl_callbacks {
     void* user;
     /* SIGNAL with a handler behaviour (sub-interrupt 2*cbid). For behaviour 3 (pause) the list is
@@ -150,7 +173,8 @@ typedef struct ge2gl_config {
        place (no copies). NULL: ge2gl allocates zeroed memory; the host then moves data with
        ge2gl_mem_write/ge2gl_mem_read or ge2gl_mem_pointer. */
     uint8_t* ram;
-    uint32_t ram_size;    /* bytes at ram (or to allocate); 0 = 64 MiB */
+    uint32_t ram_size;    /* bytes at ram (or to allocate), respected exactly: the GE reads
+                             nothing past it. Required with a host ram; 0 without: 64 MiB */
     uint8_t* vram;        /* 0x200000 bytes */
     int32_t backend;      /* GE2GL_BACKEND_* */
     uint32_t sdk_version; /* the game's sceKernelGetCompiledSdkVersion(); 0 = 0x06060010 */
@@ -159,6 +183,26 @@ typedef struct ge2gl_config {
     int32_t soft_threads; /* software backend rasterising threads; 0 = all cores (same output) */
     int32_t gl_use_egl;   /* GE2GL_BACKEND_GL_HEADLESS: nonzero = EGL surfaceless, 0 = OSMesa */
     ge2gl_callbacks callbacks;
+    /* API 1.1. A host built against 1.0 passes the smaller struct_size and gets the defaults. */
+    int32_t gl_mode;      /* GE2GL_GL_MODE_EXACT (default) or GE2GL_GL_MODE_HW */
+    int32_t render_scale; /* GL_MODE_HW: internal resolution 1-8 x the PSP's; 0 = 1. VRAM and the
+                             frame read back stay in PSP pixels (box-downsampled) */
+    /* API 1.2. */
+    /* GL_CURRENT: the host's GL loader (SDL_GL_GetProcAddress, glfwGetProcAddress,
+       eglGetProcAddress, ...); every GL entry point ge2gl calls is loaded through it. NULL: the
+       loader of whichever of EGL or OSMesa has a context current. */
+    void* (*gl_get_proc_address)(const char* name);
+    /* GL backends. 0: after every list that completes and before every sync returns, guest VRAM
+       holds what was drawn. Nonzero: VRAM is written only by ge2gl_sync_range, ge2gl_mem_read and
+       ge2gl_read_frame; vram_dirty announces ranges the GPU drew into since their last write. */
+    int32_t lazy_writeback;
+    /* Nonzero: after a signal or finish callback the GE stops (ge2gl_run reports
+       GE2GL_GE_INTERRUPT, waits return GE2GL_ERR_WOULD_BLOCK) until ge2gl_interrupt_ack(), so the
+       host can run the guest handler before the list goes on, as the PSP does. */
+    int32_t hold_interrupts;
+    /* lazy_writeback: the GPU drew into [addr, addr+size) of VRAM (once per range until it is
+       written back). Called on the thread that runs the GE, with callbacks.user. May be NULL. */
+    void (*vram_dirty)(void* user, uint32_t addr, uint32_t size);
 } ge2gl_config;
 
 /* The version of the library actually loaded. */
@@ -167,10 +211,14 @@ GE2GL_API uint32_t ge2gl_api_version(void);
 GE2GL_API const char* ge2gl_status_name(ge2gl_status status);
 /* Fills *config with defaults (soft backend, ge2gl-owned 64 MiB RAM and VRAM). */
 GE2GL_API void ge2gl_config_init(ge2gl_config* config);
+/* On failure *out is NULL and ge2gl_last_message(NULL) says why (per thread). */
 GE2GL_API ge2gl_status ge2gl_create(const ge2gl_config* config, ge2gl_context** out);
-/* Stops the worker thread (if any) and frees everything. NULL is allowed. */
+/* Stops the worker thread (if any) and frees everything. NULL is allowed. GL_CURRENT: call it on
+   the creating thread with the host's context current, or the GL objects are left to the host's
+   context. A headless context is released and the thread's previous context restored. */
 GE2GL_API void ge2gl_destroy(ge2gl_context* h);
-/* Why the last failing call on h failed ("" if it succeeded). Valid until the next call on h. */
+/* Why the last failing call on h failed ("" if it succeeded). Valid until the next call on h.
+   NULL: why this thread's last ge2gl_create failed ("" if it succeeded). */
 GE2GL_API const char* ge2gl_last_message(ge2gl_context* h);
 
 /* ---- Guest memory ------------------------------------------------------------------------ */
@@ -178,8 +226,12 @@ GE2GL_API ge2gl_status ge2gl_mem_write(ge2gl_context* h, uint32_t addr, const vo
 GE2GL_API ge2gl_status ge2gl_mem_read(ge2gl_context* h, uint32_t addr, void* dst, uint32_t size);
 /* Host pointer to [addr, addr+size) (one region), or GE2GL_ERR_MEMORY. */
 GE2GL_API ge2gl_status ge2gl_mem_pointer(ge2gl_context* h, uint32_t addr, uint32_t size, uint8_t** out);
-/* The host wrote guest memory directly (textures, CLUTs): backends drop what they cached. */
+/* The host wrote guest memory directly (textures, CLUTs, frame buffers): the fast path; ge2gl
+   also finds unreported writes by hashing (see Memory above). */
 GE2GL_API ge2gl_status ge2gl_mem_written(ge2gl_context* h, uint32_t addr, uint32_t size);
+/* Writes what the GPU drew over [addr, addr+size) into guest memory in place (the host's VRAM
+   when it gave one). Needed only with config.lazy_writeback; harmless otherwise. */
+GE2GL_API ge2gl_status ge2gl_sync_range(ge2gl_context* h, uint32_t addr, uint32_t size);
 
 /* ---- sceGe ------------------------------------------------------------------------------- */
 /* SceGeListArgs as the game passed it (read it from guest memory yourself). */
@@ -237,6 +289,9 @@ typedef struct ge2gl_run_info {
 /* Runs queued lists in order for at most max_commands commands (0 only reports the position).
    out may be NULL. GE2GL_ERR_BAD_STATE in worker-thread mode. */
 GE2GL_API ge2gl_status ge2gl_run(ge2gl_context* h, uint64_t max_commands, ge2gl_run_info* out);
+/* config.hold_interrupts: the host has handled the interrupt(s) delivered so far; the GE goes on.
+   GE2GL_ERR_BAD_STATE when no interrupt is held. */
+GE2GL_API ge2gl_status ge2gl_interrupt_ack(ge2gl_context* h);
 
 /* ---- Frames ------------------------------------------------------------------------------ */
 /* Pixels of a frame buffer as RGBA8888 (R in the first byte), width*height*4 bytes, rows top to
@@ -244,10 +299,33 @@ GE2GL_API ge2gl_status ge2gl_run(ge2gl_context* h, uint64_t max_commands, ge2gl_
    is flushed to VRAM first. */
 GE2GL_API ge2gl_status ge2gl_read_frame(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format,
                                         uint32_t width, uint32_t height, uint8_t* out_rgba, size_t out_size);
-/* GL backends: the GL texture holding that frame buffer (valid on the GL context until the next
-   GE call). GE2GL_ERR_UNSUPPORTED for other backends. */
+/* GL backends: a GL_TEXTURE_2D (RGBA8, row 0 = top line, alpha 255) holding the width x height
+   frame at addr (VRAM or RAM), at the render scale (width*N x height*N). Drawn on the GPU from the
+   render target that holds the frame, or uploaded from guest memory where none does. Owned by
+   ge2gl, valid on the GL context until the next call on h. GE2GL_ERR_UNSUPPORTED for other
+   backends. */
 GE2GL_API ge2gl_status ge2gl_frame_texture(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format,
                                            uint32_t width, uint32_t height, uint32_t* out_texture);
+/* The same at out_width x out_height (1-8192), bilinearly resampled on the GPU: an exact copy when
+   the size is the frame's at the render scale. */
+GE2GL_API ge2gl_status ge2gl_frame_texture_sized(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format,
+                                                 uint32_t width, uint32_t height, uint32_t out_width,
+                                                 uint32_t out_height, uint32_t* out_texture);
+
+/* ---- Dump replay (integration testing) -------------------------------------------------- */
+/* The frame buffer a dump displays (its last DISPLAY record, or the last drawing target). */
+typedef struct ge2gl_display {
+    uint32_t addr;   /* guest address */
+    uint32_t stride; /* pixels */
+    int32_t format;  /* GE2GL_FORMAT_* */
+    uint32_t width, height; /* 480 x 272 */
+} ge2gl_display;
+
+/* Replays a PPSSPP GE dump (.ppdmp, or a .zip holding one) through h the way PPSSPP's player does
+   (guest memory writes, list enqueues, stall updates and runs on h, callbacks delivered), so a host
+   can check its integration (its GL context, threads, presentation) against `ge2gl render` on the
+   same file. h needs 64 MiB of RAM; not in worker-thread mode. out may be NULL. */
+GE2GL_API ge2gl_status ge2gl_replay_dump(ge2gl_context* h, const char* path, ge2gl_display* out);
 
 #ifdef __cplusplus
 } /* extern "C" */

@@ -11,6 +11,7 @@
 //   auto id = ctx.value.enqueue(list, stall);
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -44,6 +45,8 @@ struct Callbacks {
     std::function<void(int32_t listId, uint32_t pc)> end;
     std::function<void(int32_t listId, uint32_t pc, const char* message)> error;
     std::function<void(int32_t listId, uint32_t readUpTo)> progress;
+    // config.lazy_writeback: [addr, addr+size) of VRAM was drawn into (API 1.2).
+    std::function<void(uint32_t addr, uint32_t size)> vramDirty;
 };
 
 class Context {
@@ -73,10 +76,13 @@ public:
         config.callbacks.end = state->fn.end ? &onEnd : nullptr;
         config.callbacks.error = state->fn.error ? &onError : nullptr;
         config.callbacks.progress = state->fn.progress ? &onProgress : nullptr;
+        if (config.struct_size >= offsetof(ge2gl_config, vram_dirty) + sizeof(config.vram_dirty))
+            config.vram_dirty = state->fn.vramDirty ? &onVramDirty : nullptr;
         ge2gl_context* h = nullptr;
         r.status.code = ge2gl_create(&config, &h);
         if (!r.ok()) {
-            r.message = r.status.name();
+            const char* why = ge2gl_last_message(nullptr);
+            r.message = why && *why ? why : r.status.name();
             return r;
         }
         r.value.h_ = h;
@@ -99,6 +105,7 @@ public:
     Status memWrite(uint32_t addr, const void* src, uint32_t size) { return {ge2gl_mem_write(h_, addr, src, size)}; }
     Status memRead(uint32_t addr, void* dst, uint32_t size) { return {ge2gl_mem_read(h_, addr, dst, size)}; }
     Status memWritten(uint32_t addr, uint32_t size) { return {ge2gl_mem_written(h_, addr, size)}; }
+    Status syncRange(uint32_t addr, uint32_t size) { return {ge2gl_sync_range(h_, addr, size)}; }
 
     // ---- sceGe ----
     Result<int32_t> enqueue(uint32_t list, uint32_t stall, int32_t cbid = -1, const ge2gl_list_args* args = nullptr) {
@@ -147,6 +154,10 @@ public:
     Result<ge2gl_run_info> run(uint64_t maxCommands) {
         return call<ge2gl_run_info>([&](ge2gl_run_info* v) { return ge2gl_run(h_, maxCommands, v); });
     }
+    Status interruptAck() { return {ge2gl_interrupt_ack(h_)}; }
+    Result<ge2gl_display> replayDump(const char* path) {
+        return call<ge2gl_display>([&](ge2gl_display* v) { return ge2gl_replay_dump(h_, path, v); });
+    }
     Result<std::vector<uint8_t>> readFrame(uint32_t addr, uint32_t stride, int32_t format, uint32_t width, uint32_t height) {
         return call<std::vector<uint8_t>>([&](std::vector<uint8_t>* v) {
             v->assign(size_t(width) * height * 4, 0);
@@ -155,6 +166,12 @@ public:
     }
     Result<uint32_t> frameTexture(uint32_t addr, uint32_t stride, int32_t format, uint32_t width, uint32_t height) {
         return call<uint32_t>([&](uint32_t* v) { return ge2gl_frame_texture(h_, addr, stride, format, width, height, v); });
+    }
+    Result<uint32_t> frameTexture(uint32_t addr, uint32_t stride, int32_t format, uint32_t width, uint32_t height,
+                                  uint32_t outWidth, uint32_t outHeight) {
+        return call<uint32_t>([&](uint32_t* v) {
+            return ge2gl_frame_texture_sized(h_, addr, stride, format, width, height, outWidth, outHeight, v);
+        });
     }
 
 private:
@@ -190,6 +207,7 @@ private:
     static void onEnd(void* u, int32_t id, uint32_t pc) { guard(u, [&](Callbacks& c) { c.end(id, pc); }); }
     static void onError(void* u, int32_t id, uint32_t pc, const char* m) { guard(u, [&](Callbacks& c) { c.error(id, pc, m); }); }
     static void onProgress(void* u, int32_t id, uint32_t pc) { guard(u, [&](Callbacks& c) { c.progress(id, pc); }); }
+    static void onVramDirty(void* u, uint32_t a, uint32_t n) { guard(u, [&](Callbacks& c) { c.vramDirty(a, n); }); }
 
     ge2gl_context* h_ = nullptr;
     std::unique_ptr<CallbackState> cb_;

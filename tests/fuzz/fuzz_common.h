@@ -131,7 +131,7 @@ public:
         in_.drawPrim(q);
     }
     void drawPatch(const PatchPacket& p) override {
-        // The tessellator's own output bound (hle/spline.cpp), per direction.
+        // The tessellator's own output bound (geometry/spline.cpp), per direction.
         const u64 du = std::max<u32>(p.divU, 1), dv = std::max<u32>(p.divV, 1);
         const u64 est = (u64(p.ucount) * du + 1) * (u64(p.vcount) * dv + 1);
         if (!room(0) || patchVerts_ + est > caps_.patchVertices) {

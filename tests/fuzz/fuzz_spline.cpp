@@ -1,4 +1,4 @@
-// Harness (g): Bezier and spline tessellation (hle/spline.h): control-point counts, knot types,
+// Harness (g): Bezier and spline tessellation (geometry/spline.h): control-point counts, knot types,
 // divisions, PPM triangles/lines/points, PFACE, every VTYPE (indices, morphing, weights, colours,
 // normals generated for lighting), then the software model's transform of the output.
 //
@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <string>
 
+#include "geometry/spline.h"
+#include "geometry/transform.h"
 #include "hle/ge_engine.h"
-#include "hle/spline.h"
-#include "softmodel/transform.h"
 #include "tests/fuzz/fuzz_common.h"
 
 using namespace ge;
@@ -72,24 +72,24 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         if (p.divU >= p.divV) p.divU = (p.divU + 1) / 2;
         else p.divV = (p.divV + 1) / 2;
     }
-    TessOutput out;
+    geo::TessOutput out;
     std::string err;
     u64 sum = 0;
-    if (tessellatePatch(mem, st, p, out, &err)) {
+    if (geo::tessellatePatch(mem, st, p, out, &err)) {
         for (u32 i : out.indices)
             if (i >= out.verts.size()) __builtin_trap();  // an index outside the output
-        const soft::TransformState ts = soft::makeTransformState(st, p.vtype, true, true);
+        const geo::TransformState ts = geo::makeTransformState(st, p.vtype, true, true);
         const size_t step = std::max<size_t>(1, out.verts.size() / 4096);
         for (size_t i = 0; i < out.verts.size(); i += step) {
-            soft::ClipVertex cv;
-            soft::transformVertex(ts, out.verts[i], cv);
+            geo::ClipVertex cv;
+            geo::transformVertex(ts, out.verts[i], cv);
             sum += u64(cv.sv.x) + u64(cv.sv.z);
         }
     }
     float w[4];
-    bezierWeights(float(p.divU) / float(p.divV), w);
+    geo::bezierWeights(float(p.divU) / float(p.divV), w);
     std::vector<float> kv;
-    splineKnots(int(p.ucount), int(p.uknot), kv);
+    geo::splineKnots(int(p.ucount), int(p.uknot), kv);
     sum += out.verts.size() + kv.size();
     if (stored) mem.fill(base, 0, stored);
     volatile u64 sink = sum;

@@ -1,6 +1,6 @@
-// Harness (f): vertex decoding (every VTYPE: formats, morphing, skinning, indices), the software
-// model's transform, lighting and texture-coordinate generation, near clipping and the discard
-// rules, primitive assembly and the rasteriser's row bounds; BBOX; and, where the GL translator
+// Harness (f): vertex decoding (every VTYPE: formats, morphing, skinning, indices), the shared
+// geometry (geometry/): transform, lighting and texture-coordinate generation, near clipping and
+// the discard rules, primitive assembly and the rasteriser's row bounds; BBOX; and, where the GL translator
 // is built, its CPU vertex pipeline over the same draw (no GL context needed).
 //
 // Input: u32 VTYPE, u16 count (cut to 512), u8 primitive, u8 flags (bits 0-1 data placement as in
@@ -12,19 +12,19 @@
 #include <string>
 #include <vector>
 
+#include "geometry/assembly.h"
+#include "geometry/clip.h"
+#include "geometry/raster.h"
+#include "geometry/transform.h"
 #include "hle/ge_engine.h"
 #include "hle/vertex_decoder.h"
-#include "softmodel/assembly.h"
-#include "softmodel/clip.h"
-#include "softmodel/raster.h"
-#include "softmodel/transform.h"
 #include "tests/fuzz/fuzz_common.h"
 #ifdef GE2GL_HAVE_GL
 #include "translator/vertex_pipeline.h"
 #endif
 
 using namespace ge;
-using namespace ge::soft;
+using namespace ge::geo;
 
 namespace {
 

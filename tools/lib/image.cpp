@@ -3,9 +3,11 @@
 #include <dlfcn.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <limits>
 
 #include "hle/pixel_format.h"
@@ -162,6 +164,28 @@ bool readImage(const std::string& path, Image& img, std::string& err) {
     return true;
 }
 
+Image boxDownsample(const Image& img, int n) {
+    if (n <= 1) return img;
+    Image out;
+    out.width = img.width / n;
+    out.height = img.height / n;
+    out.rgba.assign(size_t(out.width) * size_t(out.height), 0);
+    const u32 area = u32(n * n);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            u32 sum[4] = {};
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const u32 p = img.at(x * n + i, y * n + j);
+                    for (int c = 0; c < 4; ++c) sum[c] += (p >> (8 * c)) & 0xFF;
+                }
+            u32 p = 0;
+            for (int c = 0; c < 4; ++c) p |= ((sum[c] + area / 2) / area) << (8 * c);
+            out.rgba[size_t(y) * size_t(out.width) + size_t(x)] = p;
+        }
+    return out;
+}
+
 double mseRGB(const Image& a, const Image& b, int w, int h) {
     if (a.width < w || a.height < h || b.width < w || b.height < h) return -1;
     u64 sum = 0;
@@ -181,22 +205,59 @@ double psnrFromMse(double mse) {
     return 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-Image diffImage(const Image& a, const Image& b, int w, int h) {
+namespace {
+
+// A picture of a and b's differences: each differing pixel coloured by `mark(p, q)`, the others a
+// dim grey copy of a (a third of the channels' mean).
+template <class Mark>
+Image differencePicture(const Image& a, const Image& b, int w, int h, Mark mark) {
     Image d;
     d.width = w;
     d.height = h;
     d.rgba.assign(size_t(w) * h, 0xFF000000u);
     for (int y = 0; y < h && y < a.height && y < b.height; ++y)
         for (int x = 0; x < w && x < a.width && x < b.width; ++x) {
-            u32 p = a.at(x, y), q = b.at(x, y);
+            const u32 p = a.at(x, y), q = b.at(x, y);
+            u32& o = d.rgba[size_t(y) * w + x];
             if ((p & 0xFFFFFF) != (q & 0xFFFFFF)) {
-                d.rgba[size_t(y) * w + x] = 0xFFFF00FFu;
+                o = mark(p, q);
             } else {
-                u32 grey = (((p & 0xFF) + ((p >> 8) & 0xFF) + ((p >> 16) & 0xFF)) / 3) / 3;
-                d.rgba[size_t(y) * w + x] = 0xFF000000u | grey | grey << 8 | grey << 16;
+                const u32 grey = (((p & 0xFF) + ((p >> 8) & 0xFF) + ((p >> 16) & 0xFF)) / 3) / 3;
+                o = 0xFF000000u | grey | grey << 8 | grey << 16;
             }
         }
     return d;
+}
+
+}  // namespace
+
+Image diffImage(const Image& a, const Image& b, int w, int h) {
+    return differencePicture(a, b, w, h, [](u32, u32) { return 0xFFFF00FFu; });
+}
+
+u32 heatColour(int d) {
+    if (d <= 0) return 0xFF000000u;
+    struct Stop {
+        double t;
+        int r, g, b;
+    };
+    static constexpr Stop kStops[] = {{0.125, 40, 40, 255}, {0.33, 0, 210, 230}, {0.55, 70, 220, 0},
+                                      {0.75, 255, 220, 0}, {1.0, 255, 0, 0}};
+    const double t = std::min(1.0, std::log2(1.0 + std::min(d, 255)) / 8.0);
+    size_t i = 1;
+    while (i + 1 < std::size(kStops) && t > kStops[i].t) ++i;
+    const Stop &a = kStops[i - 1], &b = kStops[i];
+    const double f = std::clamp((t - a.t) / (b.t - a.t), 0.0, 1.0);
+    auto mix = [f](int x, int y) { return u32(std::lround(x + (y - x) * f)); };
+    return 0xFF000000u | mix(a.r, b.r) | mix(a.g, b.g) << 8 | mix(a.b, b.b) << 16;
+}
+
+Image heatImage(const Image& a, const Image& b, int w, int h) {
+    return differencePicture(a, b, w, h, [](u32 p, u32 q) {
+        int diff = 0;
+        for (int c = 0; c < 24; c += 8) diff = std::max(diff, std::abs(int((p >> c) & 0xFF) - int((q >> c) & 0xFF)));
+        return heatColour(diff);
+    });
 }
 
 }  // namespace ge::tools

@@ -1,5 +1,6 @@
 // Rendering a dump with a chosen backend: shared by the CLI, the tests and the benchmarks.
 #pragma once
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,13 +17,20 @@ struct RenderOptions {
     dump::ReplayTiming replayTiming = dump::ReplayTiming::Ppsspp;  // when the GE runs (player.h)
     double maxGeMs = dump::ReplayOptions::kDefaultMaxGeMs;  // GE-time budget (player.h), 0 = none
     int threads = 0;               // software model threads (0 = all cores)
-    std::string glContext = "osmesa";  // "osmesa" | "egl"
+    std::string glContext = "osmesa";  // "osmesa" | "egl" | "null" (GL calls do nothing: CPU cost only)
     bool glBaseline = false;       // GL: force the GL 3.3 baseline paths
+    std::string glMode = "exact";  // GL: "exact" | "hw" (gl_renderer.h GlMode)
+    int scale = 1;                 // GL hw: render scale 1–8
+    std::string glVertices = "auto";  // GL hw: "auto" | "gpu" | "cpu" (GlOptions::vertices)
     std::string shaderDumpDir, programCacheDir;
+    // --skip / --only (tools/lib/draw_select.h): when set, a DrawHook between the engine and the
+    // backend passes draw n (numbered from 1) on only if keepDraw(n). Null: every draw, no hook.
+    std::function<bool(u64 draw)> keepDraw;
 };
 
 struct RenderOutput {
-    Image frame;                   // 480x272 RGBA, alpha 255
+    Image frame;                   // 480x272 RGBA, alpha 255 (at render scale N: frameScaled box-downsampled)
+    Image frameScaled;             // 480N x 272N at render scale N > 1 (GL hw), else empty
     u32 displayAddr = 0, displayStride = 0, displayFormat = 0;
     u32 depthAddr = 0, depthStride = 0;
     dump::ReplayResult replay;
@@ -41,8 +49,12 @@ bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOut
                     std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr);
 // `reuse`, when non-null, is cleared (Memory::clear) and replayed into instead of a fresh Memory:
 // `ge2gl bench` keeps one for all its runs; it holds the frame afterwards.
+// `backend`, when non-null, keeps the backend between calls (with `reuse`): a held one is told that
+// all of memory changed and replayed into again — the steady state of an emulator's next frame
+// (textures decoded, programs compiled); an empty one is filled.
 bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
-                std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr, Memory* reuse = nullptr);
+                std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr, Memory* reuse = nullptr,
+                std::unique_ptr<Renderer>* backend = nullptr);
 
 // "NAME" of a dump path: file name without directories and without .zip / .ppdmp suffixes.
 std::string dumpName(const std::string& path);

@@ -1,0 +1,156 @@
+// The plugin API's handle and the guard every entry point runs under (api/*.cpp).
+//
+// Locking (docs/plugin-api.md "Threads"): one recursive mutex per handle serialises calls. The
+// thread that runs the GE (ge2gl_run, a wait, or the worker) holds it in chunks of kChunk
+// commands and lets waiting callers in between; it releases it around every host callback
+// (CListener::deliver), so a callback may block on another host thread that calls into ge2gl.
+// Peek syncs read a snapshot of the list states (snapshot mutex only), refreshed after every
+// chunk and every call, so they never wait for a draw.
+//
+// GL (gl_renderer.h glHostEnter): a call that touches GL enters the renderer's host scope through
+// Call::gl() — the headless context made current on this thread, or the host's state saved — and
+// leaves it when the call returns; around callbacks the scope is left and re-entered.
+#pragma once
+#define GE2GL_BUILDING_LIBRARY 1
+#include "ge2gl/ge2gl.h"
+
+#include <array>
+#include <atomic>
+#include <condition_variable>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "hle/ge_engine.h"
+#include "hle/memory.h"
+#include "hle/sce_ge.h"
+
+namespace ge2gl_impl {
+
+using ge::s32;
+using ge::u32;
+using ge::u64;
+using ge::u8;
+
+// Commands run between two looks at waiting callers and two snapshot refreshes.
+constexpr u64 kChunk = 512;
+
+class CListener : public ge::SceGeListener {
+public:
+    ge2gl_context* h = nullptr;
+    ge2gl_callbacks cb{};
+    void onSignal(const ge::SceInterrupt& in) override;
+    void onFinish(const ge::SceInterrupt& in) override;
+    void onEnd(s32 listId, u32 pc) override;
+    void onError(s32 listId, u32 pc, const std::string& message) override;
+    void onProgress(s32 listId, u32 pc) override;
+
+private:
+    template <class F>
+    void deliver(F&& f);
+};
+
+}  // namespace ge2gl_impl
+
+struct ge2gl_context {
+    std::unique_ptr<ge::u8[]> ownedRam;  // only when the host gives VRAM but not RAM
+    std::unique_ptr<ge::Memory> mem;
+    std::unique_ptr<ge::Renderer> renderer;  // null for GE2GL_BACKEND_NULL (the engine's own null backend)
+    std::unique_ptr<ge::GeEngine> engine;
+    std::unique_ptr<ge::SceGe> sce;
+    ge2gl_impl::CListener listener;
+    int backend = GE2GL_BACKEND_NULL;
+    ge::u64 waitBudget = ge::u64(1) << 26;
+    bool lazyWriteback = false, holdInterrupts = false;
+    void (*vramDirty)(void*, uint32_t, uint32_t) = nullptr;
+    std::thread::id glThread;  // GL_CURRENT: the thread whose context ge2gl draws on
+
+    std::recursive_mutex mu;
+    std::string message;
+    std::atomic<int> waiters{0};  // callers waiting for mu (the GE-running thread yields to them)
+
+    // The thread running the GE under mu: its lock (released around callbacks) and whether it
+    // entered the GL scope. Set only while the GE runs.
+    std::unique_lock<std::recursive_mutex>* runLock = nullptr;
+    bool runGl = false;
+    std::thread::id deliverThread;  // the thread inside a host callback (runs/waits: reentrant)
+    bool held = false;              // hold_interrupts: waiting for ge2gl_interrupt_ack
+    // mem_written from a thread that cannot reach GL_CURRENT's context: applied on next entry.
+    std::vector<std::pair<ge::u32, ge::u32>> pendingWrites;
+
+    // Peek snapshot (snapMu only).
+    std::mutex snapMu;
+    std::array<ge::s32, ge::SceGe::kMaxLists> peekList{};
+    ge::s32 peekDraw = 0;
+
+    // Worker-thread mode.
+    bool workerMode = false;
+    bool quit = false;
+    std::thread worker;
+    std::thread::id workerId;
+    std::condition_variable_any wake;  // work may be available
+    std::condition_variable_any idle;  // the worker made progress or stopped
+    ge::u64 workerCommands = 0;
+
+    bool isGl() const { return backend == GE2GL_BACKEND_GL_CURRENT || backend == GE2GL_BACKEND_GL_HEADLESS; }
+    void workerLoop();
+};
+
+namespace ge2gl_impl {
+
+// Per-call guard: takes the handle's lock (announcing itself to the GE-running thread), clears
+// the message; on return leaves the GL scope, refreshes the peek snapshot, wakes the worker.
+class Call {
+public:
+    explicit Call(ge2gl_context* h);
+    ~Call();
+    std::unique_lock<std::recursive_mutex>& lock() { return lk_; }
+    // Enters the GL scope for this call (no-op for other backends). Fails with
+    // GE2GL_ERR_WRONG_THREAD (GL_CURRENT on another thread) or GE2GL_ERR_BACKEND.
+    ge2gl_status gl();
+    bool glEntered() const { return glEntered_; }
+    // True when GL work is possible from this thread (GL_CURRENT: the creating thread).
+    bool glReachable() const;
+    // Turns an sceGe result into a status and out-value: values >= 0 are results, < 0 errors.
+    ge2gl_status sceResult(s32 r, int32_t* out);
+    ge2gl_status error(ge2gl_status s, const std::string& msg);
+
+private:
+    ge2gl_context* h_;
+    std::unique_lock<std::recursive_mutex> lk_;
+    bool glEntered_ = false;
+};
+
+template <class F>
+ge2gl_status guarded(ge2gl_context* h, F&& f) {
+    if (!h) return GE2GL_ERR_INVALID_HANDLE;
+    try {
+        return f();
+    } catch (const std::bad_alloc&) {
+        h->message = "out of host memory";
+        return GE2GL_ERR_OUT_OF_HOST_MEMORY;
+    } catch (...) {
+        h->message = "internal error";
+        return GE2GL_ERR_BAD_STATE;
+    }
+}
+
+void refreshSnapshot(ge2gl_context* h);
+// Lazy write-back: hands newly drawn VRAM ranges to config.vram_dirty (lock released).
+void announceDirty(ge2gl_context* h);
+// Runs or waits from inside a callback, or on the worker, are refused.
+bool reentrant(const ge2gl_context* h);
+// Waits (running the GE on this thread, or letting the worker run it) until `done` holds, the GE
+// cannot progress, an interrupt is held, or the wait budget is spent. Returns true when done;
+// else `why` says what stopped it.
+// `stopAfter`: a list ID the inline run stops after (-1: none), so a wait for one list does not
+// run the next.
+bool waitUntil(ge2gl_context* h, Call& c, const std::function<bool()>& done, std::string& why, s32 stopAfter = -1);
+// Runs the GE on this thread for up to `budget` commands (non-worker mode).
+ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter = -1);
+
+}  // namespace ge2gl_impl

@@ -1,0 +1,298 @@
+// Vertex processing (see transform.h).
+#include "geometry/transform.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace ge::geo {
+
+namespace {
+
+// One term of a matrix row as the GE forms it. The GE has no IEEE specials (ge-reference §1.2): a
+// zero or denormal factor gives a zero term whatever the other factor is, and an exponent field of
+// 255 (IEEE inf/NaN) is an ordinary exponent, ±1.m·2^128. So a NaN coordinate times a zero matrix
+// element contributes nothing: Beam 'em up draws its text as transform-mode rectangles whose second
+// vertex has z = NaN under an orthographic matrix, and the reference (SWR, which multiplies with the
+// GE's term rules) draws them.
+inline float geTerm(float a, float b) {
+    u32 ba, bb;
+    std::memcpy(&ba, &a, 4);
+    std::memcpy(&bb, &b, 4);
+    const u32 ea = (ba >> 23) & 0xFF, eb = (bb >> 23) & 0xFF;
+    if (ea == 0 || eb == 0) return 0.0f;
+    if (ea != 255 && eb != 255) return a * b;
+    auto value = [](u32 bits, u32 e) {
+        if (e != 255) {
+            float f;
+            std::memcpy(&f, &bits, 4);
+            return double(f);
+        }
+        const double m = 1.0 + double(bits & 0x7FFFFF) / 8388608.0;
+        return (bits & 0x80000000u) ? -std::ldexp(m, 128) : std::ldexp(m, 128);
+    };
+    return float(value(ba, ea) * value(bb, eb));  // overflows to ±inf only for |other| ≥ ~1
+}
+
+}  // namespace
+
+void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
+    // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; §3.4)
+    for (int r = 0; r < 3; ++r)
+        out[r] = (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
+}
+
+void mulDir3x4(const float m[12], const float d[3], float out[3]) {
+    for (int r = 0; r < 3; ++r) out[r] = geTerm(m[r], d[0]) + geTerm(m[3 + r], d[1]) + geTerm(m[6 + r], d[2]);
+}
+
+void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
+    // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
+    for (int r = 0; r < 4; ++r)
+        out[r] = (geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1])) + (geTerm(m[8 + r], p[2]) + m[12 + r]);
+}
+
+TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal) {
+    TransformState ts;
+    ts.through = (vtype >> 23) & 1;
+    ts.hasColor = hasColor;
+    ts.hasNormal = hasNormal;
+    ts.invTexW0 = 1.0f / float(st.textureWidth(0));
+    ts.invTexH0 = 1.0f / float(st.textureHeight(0));
+    if (ts.through) return ts;
+
+    ts.clipEnable = st.CLE_on();
+    std::memcpy(ts.world, st.world, sizeof ts.world);
+    std::memcpy(ts.view, st.view, sizeof ts.view);
+    std::memcpy(ts.proj, st.proj, sizeof ts.proj);
+    std::memcpy(ts.tgen, st.tgen, sizeof ts.tgen);
+    ts.sx = st.SX_value(), ts.sy = st.SY_value(), ts.sz = st.SZ_value();
+    ts.tx = st.TX_value(), ts.ty = st.TY_value(), ts.tz = st.TZ_value();
+    ts.offX16 = int(st.OFFSETX_value());
+    ts.offY16 = int(st.OFFSETY_value());
+
+    // PPSSPP's software renderer (TransformUnit ComputeTransformState, POS_TO_CLIP) multiplies the
+    // 4×4 forms of world, view and projection once per draw and transforms positions with that
+    // product: its float rounding differs from three chained products (Pursuit Force UCES
+    // 0.0125 → 0.0062, Monster Hunter slightly). Fog does not change this (its depth is computed
+    // separately: Monster Hunter 0.325 → 0.320, Frontier Gate 0.0136 → 0.0111, Pursuit Force
+    // UCUS 2.748 → 2.744), nor does lighting when every enabled light is directional (lighting then
+    // needs only the world normal). A positional or spot light needs the world position, so the
+    // position goes model → world and then through view·proj folded into one matrix
+    // (WORLD_TO_CLIP; GachiTora 0.876 → 0.874).
+    bool needWorldPos = false;
+    if (st.LTE_on()) {
+        for (int n = 0; n < 4; ++n)
+            if (st.LE_on(n) && st.LTYPE_type(n) != 0) needWorldPos = true;
+    }
+    ts.combinedClip = !needWorldPos;
+    ts.worldToClip = needWorldPos;
+    {
+        float w4[16], v4[16], wv[16];
+        auto to4x4 = [](const float* m, float* o) {
+            for (int c = 0; c < 4; ++c) {
+                for (int r = 0; r < 3; ++r) o[c * 4 + r] = m[c * 3 + r];
+                o[c * 4 + 3] = c == 3 ? 1.0f : 0.0f;
+            }
+        };
+        // o = a·b, each element summed left to right.
+        auto mul4 = [](const float* a, const float* b, float* o) {
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j)
+                    o[i * 4 + j] = ((a[i * 4] * b[j] + a[i * 4 + 1] * b[4 + j]) + a[i * 4 + 2] * b[8 + j]) +
+                                   a[i * 4 + 3] * b[12 + j];
+        };
+        to4x4(ts.world, w4);
+        to4x4(ts.view, v4);
+        mul4(w4, v4, wv);
+        mul4(wv, ts.proj, ts.worldViewProj);
+        mul4(v4, ts.proj, ts.viewProj);
+    }
+
+    const u32 map = st.TMAP_mode();
+    ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (§3.8)
+    ts.projSource = int(st.TMAP_proj());
+    // A texture-projection rectangle is drawn as triangles (§8.2) — unless the texture matrix
+    // gives Q = 1 for every vertex: its Q column is zero for X and Y, for Z too (or the source is
+    // UV, whose Z is 0), and its translation Q is exactly 1. Then the rectangle keeps the
+    // rectangle walk, as PPSSPP's software renderer does (Rasterizer.cpp ComputeRasterizerState
+    // clears textureProj in that case). NFS Carbon draws its HUD this way; the rectangle's centre
+    // sampling puts the texel columns where the reference has them.
+    const bool qIsOne = ts.tgen[2] == 0.0f && ts.tgen[5] == 0.0f && (ts.tgen[8] == 0.0f || ts.projSource == 1) &&
+                        ts.tgen[11] == 1.0f;
+    ts.rectAsTriangles = !ts.through && ts.texMap == 1 && !qIsOne;
+    ts.su = st.SU_value(), ts.sv = st.SV_value(), ts.tu = st.TU_value(), ts.tv = st.TV_value();
+
+    ts.fog = st.FGE_on();
+    if (ts.fog) {
+        // §8.9: FOG2 infinite → ±262144; FOG1 infinite or NaN → f is ±∞·FOG2 for the whole
+        // draw: 1 when the signs agree, 0 otherwise or when FOG2 = 0 (∞·0 is NaN → 0).
+        float end = st.FOG1_value(), slope = st.FOG2_value();
+        if (!std::isfinite(slope)) slope = std::signbit(slope) ? -262144.0f : 262144.0f;
+        if (!std::isfinite(end)) ts.fogFixed = (slope != 0.0f && std::signbit(end) == std::signbit(slope)) ? 1 : 0;
+        ts.fogEnd = end;
+        ts.fogSlope = slope;
+    }
+
+    ts.lighting = st.LTE_on();
+    if (ts.lighting) ts.light = makeLightingState(st, hasColor);
+    ts.normalReverse = st.NREV_on();
+    if (ts.texMap == 2) {
+        // Shade mapping uses the raw light positions, normalised (zero → (0, 0, 1)), whatever
+        // the light's type and even with lighting off (§8.10).
+        const int lu = int(st.TSHADE_u()), lv = int(st.TSHADE_v());
+        const int lights[2] = {lu, lv};
+        for (int k = 0; k < 2; ++k) {
+            ts.shadeLight[k][0] = st.LX_value(lights[k]);
+            ts.shadeLight[k][1] = st.LY_value(lights[k]);
+            ts.shadeLight[k][2] = st.LZ_value(lights[k]);
+            normalizeOr001(ts.shadeLight[k]);
+        }
+    }
+    return ts;
+}
+
+void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
+    const float w = v.clip[3];
+    // Scale first, then divide by w, then add the centre: the reference renderer's order (PPSSPP
+    // TransformUnit: clippos·screenScale / w + screenAdd); float rounding differs from x/w·scale.
+    float xs = v.clip[0] * ts.sx / w + ts.tx;
+    float ys = v.clip[1] * ts.sy / w + ts.ty;
+    float zs = v.clip[2] * ts.sz / w + ts.tz;
+    bool outside = false, zClamped = false;
+    if (ts.clipEnable) {
+        // CLE = 1: Z is clamped, and a clamped vertex is exempt from the X/Y range check (§8.5;
+        // PPSSPP's software renderer, matched to hardware tests, exempts exactly these).
+        if (!(zs >= 0.0f)) zs = 0.0f, zClamped = true;
+        else if (zs > 65535.0f) zs = 65535.0f, zClamped = true;
+    } else if (!(zs >= 0.0f && zs < 65536.0f)) {
+        outside = true;
+    }
+    if (!zClamped && !(xs >= 0.0f && xs < 4096.0f && ys >= 0.0f && ys < 4096.0f)) outside = true;
+    if (rangeCheck) v.outside = outside;
+
+    // §8.1: round to 1/16 pixel, rounding up from 0.625 of a subpixel. The screen offset is taken
+    // off in float BEFORE the truncating conversion, as the reference renderer does (PPSSPP
+    // TransformUnit ClipToScreenInternal: int(x·16 + 0.375 − OFFX16)): a vertex left of / above
+    // the drawing area therefore rounds toward zero, not down. For on-screen vertices the two
+    // orders agree; off-screen ones move 1/16 pixel, which shifts the whole interpolation of big
+    // triangles (10 of the 20 game dumps within MSE 0.1 with this rule, 7 without). The value is
+    // limited first so wild (dropped or exempt) vertices convert safely; ±2^20 sixteenths is far
+    // off screen.
+    auto to16 = [](float f, int off) {
+        float t = f * 16.0f + 0.375f - float(off);
+        if (!(t > -1048576.0f)) t = -1048576.0f;  // also NaN
+        if (t > 1048576.0f) t = 1048576.0f;
+        return int(t);
+    };
+    v.sv.x = to16(xs, ts.offX16);
+    v.sv.y = to16(ys, ts.offY16);
+    v.sv.z = depthToInt(zs);
+    v.sv.w = w;
+}
+
+void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVertex& out) {
+    ScreenVertex& sv = out.sv;
+    if (ts.through) {
+        // Drawing coordinates as given (§8.1), Z 0–65535, texels divided by the level-0 size
+        // (§8.10); no lighting, fog or clipping (§5.5).
+        auto to16 = [](float f) {
+            float t = f * 16.0f;
+            if (!(t > -1048576.0f)) t = -1048576.0f;
+            if (t > 1048576.0f) t = 1048576.0f;
+            return int(t);
+        };
+        sv.x = to16(in.pos[0]);
+        sv.y = to16(in.pos[1]);
+        sv.z = depthToInt(in.pos[2]);
+        sv.w = 1.0f;
+        sv.s = in.uv[0] * ts.invTexW0;
+        sv.t = in.uv[1] * ts.invTexH0;
+        sv.q = 1.0f;
+        sv.fog = 1.0f;
+        std::memcpy(sv.color, in.color, 4);
+        sv.secondary[0] = sv.secondary[1] = sv.secondary[2] = 0;
+        out.clip[0] = in.pos[0], out.clip[1] = in.pos[1], out.clip[2] = in.pos[2], out.clip[3] = 1.0f;
+        out.outside = false;
+        return;
+    }
+
+    float model[3] = {in.pos[0], in.pos[1], in.pos[2]};
+    float normal[3] = {0.0f, 0.0f, 1.0f};
+    if (ts.hasNormal) {
+        const float k = ts.normalReverse ? -1.0f : 1.0f;  // CMD_NREV (§9)
+        normal[0] = in.nrm[0] * k, normal[1] = in.nrm[1] * k, normal[2] = in.nrm[2] * k;
+    }
+    float world[3], viewPos[3];
+    mulPoint3x4(ts.world, model, world);
+    mulPoint3x4(ts.view, world, viewPos);
+    if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
+    else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
+    else mulPoint4x4(ts.proj, viewPos, out.clip);
+
+    // Fog factor per vertex from view-space Z (§3.9).
+    if (!ts.fog) sv.fog = 1.0f;
+    else if (ts.fogFixed >= 0) sv.fog = float(ts.fogFixed);
+    else sv.fog = (viewPos[2] + ts.fogEnd) * ts.fogSlope;
+
+    // World-space normal for lighting and shade mapping, normalised; (0, 0, 1) without one.
+    float worldNormal[3] = {0.0f, 0.0f, 1.0f};
+    if (ts.hasNormal && (ts.lighting || ts.texMap == 2)) {
+        mulDir3x4(ts.world, normal, worldNormal);
+        normalizeOr001(worldNormal);
+    }
+
+    // Texture coordinates (§13.1, §13.2).
+    sv.q = 1.0f;
+    switch (ts.texMap) {
+    case 1: {
+        // Projection mapping: (S, T, Q) = TGEN·source; SU/SV/TU/TV not applied; Q divides per pixel.
+        float src[3] = {0.0f, 0.0f, 0.0f};
+        switch (ts.projSource) {
+        case 0: std::memcpy(src, model, sizeof src); break;
+        case 1: src[0] = in.uv[0], src[1] = in.uv[1]; break;
+        case 2: {
+            // Normalised normal; a zero normal stays zero (no (0, 0, 1) substitute here).
+            const double l = std::sqrt(double(normal[0]) * normal[0] + double(normal[1]) * normal[1] +
+                                       double(normal[2]) * normal[2]);
+            if (l > 0.0) {
+                for (int i = 0; i < 3; ++i) src[i] = float(normal[i] / l);
+            }
+            break;
+        }
+        default: std::memcpy(src, normal, sizeof src); break;
+        }
+        float stq[3];
+        mulPoint3x4(ts.tgen, src, stq);
+        sv.s = stq[0], sv.t = stq[1], sv.q = stq[2];
+        break;
+    }
+    case 2: {
+        // Shade mapping: s = (normalize(Lu)·N + 1)/2, t likewise (§13.1.3, §8.10).
+        const float* lu = ts.shadeLight[0];
+        const float* lv = ts.shadeLight[1];
+        const float du = lu[0] * worldNormal[0] + lu[1] * worldNormal[1] + lu[2] * worldNormal[2];
+        const float dv = lv[0] * worldNormal[0] + lv[1] * worldNormal[1] + lv[2] * worldNormal[2];
+        sv.s = (du + 1.0f) / 2.0f;
+        sv.t = (dv + 1.0f) / 2.0f;
+        break;
+    }
+    default:
+        // UV mapping with scale and offset (equation 13-3).
+        sv.s = ts.su * in.uv[0] + ts.tu;
+        sv.t = ts.sv * in.uv[1] + ts.tv;
+        break;
+    }
+
+    // Colours (§9.2.4): lit, or the vertex colour (MAC/MAA without one) and no secondary.
+    if (ts.lighting) {
+        lightVertex(ts.light, world, worldNormal, in.color, sv.color, sv.secondary);
+    } else {
+        std::memcpy(sv.color, in.color, 4);
+        sv.secondary[0] = sv.secondary[1] = sv.secondary[2] = 0;
+    }
+
+    projectToScreen(ts, out, true);
+}
+
+}  // namespace ge::geo

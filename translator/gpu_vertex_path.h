@@ -1,0 +1,83 @@
+// GL hardware mode: PRIM draws whose vertex work runs in the generated vertex shader
+// (shadergen/hw_vertex.h) — the guest's vertex bytes go to the GPU as they are, with the GE's
+// indices rebased to them; transform, skinning, morphing, lighting, texture mapping, fog, the
+// viewport, the 1/16-pixel snap, near clipping and the discard rules happen there.
+//
+// What stays on the CPU (VertexPipeline, shared geometry/ code), each counted by reason in
+// --stats because whole-primitive knowledge or the CPU's own assembly is needed:
+//  - rectangles, lines and points: expanded or rasterised by the GE's own rules on the CPU;
+//  - strips of an even number of vertices and fans of four, without culling: the reference
+//    renderer draws those of their quads that form an axis-aligned rectangle as rectangles
+//    (geometry/assembly.h), which needs the transformed positions;
+//  - PRIM type 7 continuations: the open vertices of the previous PRIM live in VertexPipeline
+//    (a GPU-drawn PRIM leaves them there too: VertexPipeline::keepOpenVertices);
+//  - draws where the reference's skipped alpha test (geometry/reference_rules.h) depends on the
+//    vertex colours that reach the fragments;
+//  - destination reads through a texture (no framebuffer fetch): primitives of one draw that
+//    overlap must be ordered by barriers, which needs their bounds;
+//  - vertex or index bytes the guest memory cannot supply whole (the CPU path draws the readable
+//    part and reports the error).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "hle/ge_state.h"
+#include "hle/memory.h"
+#include "hle/renderer.h"
+#include "shadergen/hw_vertex.h"
+#include "translator/gl_context.h"
+#include "translator/shader_cache.h"
+
+namespace ge::gl {
+
+// One draw, prepared on the CPU before any GL call.
+struct GpuDraw {
+    shadergen::HwVsKey key;
+    shadergen::HwVsUniforms uniforms;
+    GLenum mode = GL_TRIANGLES;
+    u32 count = 0;           // vertices (indices) to draw
+    bool indexed = false;    // indices (rebased) in `indices`, else vertices 0..count-1
+    std::vector<u8> bytes;   // vertex bytes, vertex i at i * stride
+    std::vector<u32> indices;
+    bool cull = false, cullCcw = false;
+};
+
+// Why a draw stays on the CPU (indices into GpuVertexStats::cpu).
+enum class CpuReason : u8 { PrimKind, Quad, Continuation, AlphaRule, DstTexture, Memory, Count };
+const char* cpuReasonName(CpuReason r);
+
+struct GpuVertexStats {
+    u64 gpu = 0;
+    u64 cpu[size_t(CpuReason::Count)] = {};
+};
+
+class GpuVertexPath {
+public:
+    explicit GpuVertexPath(const GlContext& ctx);
+    ~GpuVertexPath();
+    GpuVertexPath(const GpuVertexPath&) = delete;
+    GpuVertexPath& operator=(const GpuVertexPath&) = delete;
+
+    // Prepares `out` for the GPU path; false (reason counted) when the draw stays on the CPU.
+    // `dstTexture`: the fragment shader reads the destination through a texture.
+    bool prepare(const Memory& mem, const GeState& st, const PrimPacket& p, bool texture, bool fog, bool cull,
+                 bool cullCcw, bool dstTexture, GpuDraw& out);
+    // Uploads the vertex bytes, indices and uniforms and draws with `prog` (already bound, with
+    // the fragment state applied). Leaves GL_CLIP_DISTANCE0 and face culling as it found them
+    // (off). The geometry shader culls and clips (hw_geometry.cpp).
+    void draw(const GpuDraw& d, const Program& prog);
+    const GpuVertexStats& stats() const { return stats_; }
+
+private:
+    bool reject(CpuReason r) {
+        ++stats_.cpu[size_t(r)];
+        return false;
+    }
+
+    const GlContext& ctx_;
+    GLuint vtxBuf_ = 0, vtxTex_ = 0, idxBuf_ = 0;
+    GpuVertexStats stats_;
+    std::vector<u32> rawIndices_;
+};
+
+}  // namespace ge::gl
