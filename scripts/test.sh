@@ -9,15 +9,52 @@ bash "$root/scripts/setup.sh"
 jobs=$(nproc 2>/dev/null || echo 2)
 bash "$root/scripts/build.sh" "$root/build"
 echo "== tests (Release) =="
+# setup.sh installed Chromium: in CI the report's browser test must run, not skip.
+[ "${CI:-}" = true ] && export GE2GL_REQUIRE_CHROMIUM=1
 (cd "$root/build" && ctest --output-on-failure -j"$jobs" --timeout 1200)
+if [ -d "$root/../shared/frametests/dumps" ]; then
+  echo "== README: the GNU parallel recipe as written (scripts/check_parallel_recipe.sh) =="
+  bash "$root/scripts/check_parallel_recipe.sh"
+fi
 echo "== hostile dumps: clean exit within 10 s and 1 GiB, both backends =="
 bash "$root/scripts/check_dumps.sh" "$root/build"
+echo "== install: CMake package, pkg-config, add_subdirectory (scripts/check_install.sh) =="
+bash "$root/scripts/check_install.sh" "$root/build"
 if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
   echo "== tests (ASan + UBSan) =="
   bash "$root/scripts/build.sh" "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DGE2GL_SANITIZE=ON -DGE2GL_BUILD_BENCH=OFF
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   # Accuracy runs over all frametests are slow under the sanitizers and add nothing there.
-  (cd "$root/build-asan" && GE2GL_SANITIZER_RUN=1 ctest --output-on-failure -j"$jobs" --timeout 2400 -LE accuracy)
+  # LP_NUM_THREADS=0: llvmpipe rasterises in the calling thread (no rasteriser threads left for
+  # LeakSanitizer to stop at exit).
+  # LeakSanitizer's exit-time tracer sometimes crashes in GL tests after they passed ("Tracer
+  # caught signal 11", then "LeakSanitizer has encountered a fatal error"): 1 of 556 tests in a
+  # fresh-clone CI run, 4 under load, never when the same tests run alone here (0 of 12), with or
+  # without Mesa's disk-cache thread, with only the main thread left to scan; on the CI machine one
+  # GL test crashed it on every run (3 of 3, same pc). It is the leak checker failing, not the
+  # test, so a rerun with the leak check on proves nothing there. When every failed test failed
+  # that way (one tracer crash per failure), those tests run again once with the leak check off
+  # (ASan and UBSan still on) and are named below; any other failure fails here.
+  asan_log="$root/build-asan/ctest-asan.log"
+  asan_ctest() {
+    (cd "$root/build-asan" && GE2GL_SANITIZER_RUN=1 LP_NUM_THREADS=0 ctest --output-on-failure --timeout 2400 -LE accuracy "$@")
+  }
+  asan_ok=0
+  asan_ctest -j"$jobs" 2>&1 | tee "$asan_log" && [ "${PIPESTATUS[0]}" = 0 ] && asan_ok=1
+  if [ "$asan_ok" != 1 ]; then
+    failed_lines=$(grep -E '^ *[0-9]+/[0-9]+ Test +#[0-9]+: .*(\*\*\*Failed|Subprocess aborted|\*\*\*Exception|\*\*\*Timeout)' "$asan_log" || true)
+    failed=$(printf '%s' "$failed_lines" | grep -c . || true)
+    tracer=$(grep -c 'Tracer caught signal' "$asan_log" || true)
+    if [ "$failed" -eq 0 ] || [ "$failed" != "$tracer" ]; then
+      echo "ASan stage: $failed failed tests, $tracer of them LeakSanitizer tracer crashes: failing" >&2
+      exit 1
+    fi
+    echo "== ASan stage: $failed tests passed and then crashed LeakSanitizer's tracer; their leak check could not run:"
+    printf '%s\n' "$failed_lines" | sed -E 's/^.*Test +#[0-9]+: ([^ ]+).*$/   \1/'
+    echo "== running them again with ASan and UBSan, leak check off =="
+    ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 asan_ctest --rerun-failed -j1 && asan_ok=1
+  fi
+  [ "$asan_ok" = 1 ] || { echo "ASan stage failed" >&2; exit 1; }
   echo "== software model under ThreadSanitizer (4 band threads) =="
   cmake -S "$root" -B "$root/build-tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGE2GL_TSAN=ON \
     -DGE2GL_BUILD_GL=OFF -DGE2GL_BUILD_BENCH=OFF >/dev/null
