@@ -36,11 +36,7 @@ constexpr Case kCases[] = {
 TestRun runClutAddress(GuSim& gu) {
     TestRun run{"clut/address", gu.backend(), {}};
     gu.init();
-    ListBuilder& b = gu.start();  // init(): draw buffer, display buffer (region), scissor
-    b.drawBuffer(GE_FORMAT_8888, 0, 512);
-    b.depthBuffer(0, 512);
-    sdkDispBuffer(b);
-    b.scissor(0, 0, 480, 272);
+    clutInit(gu.start());
     gu.finishSync();
     gu.fillVram32(0, 0, 512 * 272);
     const u32 pattern[8] = {0x11111111, 0x22222222, 0x33333333, 0x44444444,
@@ -51,10 +47,7 @@ TestRun runClutAddress(GuSim& gu) {
     gu.start().texFilter(0, 0);
     gu.finishSync();
 
-    // The sprite: Vertex {u16 u, v; u16 x, y, z} (0, 0, 0, 0, 0) - (480, 272, 480, 272, 0).
-    std::vector<u8> verts(20, 0);
-    writeLE16(&verts[10], 480), writeLE16(&verts[12], 272);
-    writeLE16(&verts[14], 480), writeLE16(&verts[16], 272);
+    const std::vector<u8> verts = spriteUv16(480, 272, 480, 272);
     bool copiedToEdge = false;
     for (const Case& c : kCases) {
         if (!copiedToEdge && c.clut == kVramEnd - 16) {

@@ -64,11 +64,7 @@ public:
         TestRun out{"commands/light", gu_.backend(), {}};
         run_ = &out;
         gu_.init();
-        ListBuilder& b = gu_.start();  // initDisplay (commands/shared.cpp)
-        sdkFrameSetup(b, {480, 272, 480, 272});
-        b.shadeModel(true);
-        b.enable(GE_CMD_TME, false);
-        setIdentityMatrices(b);
+        commandsInitDisplay(gu_.start());
         gu_.finishSync();
         // draw()
         startFrame();

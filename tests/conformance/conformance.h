@@ -4,8 +4,10 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <array>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "tests/conformance/gu_sim.h"
 
@@ -32,6 +34,40 @@ void setIdentityMatrices(ListBuilder& b);
 // sceGuDrawArray(GU_SPRITES, GU_COLOR_8888 | GU_VERTEX_32BITF | GU_TRANSFORM_2D, 2, NULL, v) with
 // v = {c, -1, -1, 0}, {c, 1, 1, 0}: a through-mode sprite covering pixel (0, 0) only.
 void drawOnePixel(ListBuilder& b, u32 abgr);
+
+// initDisplay() of commands/shared.cpp (cull, fog, light, dither): sdkFrameSetup with the given
+// frame, Gouraud shading, texturing off, identity matrices.
+void commandsInitDisplay(ListBuilder& b, const FrameSetup& f = {});
+// The init() of the clut tests: an 8888 draw buffer at 0 (depth buffer 0, width 512, as
+// sceGuDrawBuffer leaves it before sceGuDispBuffer), the display region, the full scissor.
+void clutInit(ListBuilder& b);
+// A through-mode sprite vertex pair {u16 u, v, x, y, z} from (0, 0, 0, 0, 0) to (u, v, x, y, 0).
+std::vector<u8> spriteUv16(u16 u, u16 v, u16 x, u16 y);
+// Vertices {float u, v; u32 colour; float x, y, z} (GU_TEXTURE_32BITF | GU_COLOR_8888 |
+// GU_VERTEX_32BITF), 24 bytes each; `v` holds u, v, x, y, z per vertex.
+std::vector<u8> uvColorPosF(const std::vector<std::array<float, 5>>& v, u32 color);
+
+// One vertex of commands/shared.cpp's Vertices(GU_COLOR_8888 | GU_VERTEX_16BIT | transform), CP():
+// colour, then x, y, z as s16 — pixels in through mode, norm16x/norm16y of the pixel (x * 65536 /
+// 480 - 32768, 32768 - y * 65536 / 272, wrapped to s16) in transform mode — 12 bytes with the
+// padding EndVert() aligns to.
+struct ColorPos {
+    u32 color;
+    int x, y;
+    u16 z = 0;
+};
+std::vector<u8> colorPos16(const std::vector<ColorPos>& v, bool through);
+inline u32 colorPos16Type(bool through) { return vt::COL_8888 | vt::POS_16 | (through ? vt::THROUGH : 0u); }
+
+// initDisplay() of the filtering tests (filtering/shared.cpp): 8888 buffer, screen offset
+// (2048 - 240, 2048 - 136) sent as raw OFFSETX/Y words, full viewport, depth range 65535-0, the
+// scissor the whole display (sceGuScissor(0, 0, 8, 8) sends nothing while the scissor test is off;
+// sceGuDisable(GU_SCISSOR_TEST) then sets (0, 0)-(479, 271)), texturing on, blending off, identity
+// matrices, an 8888 texture mode and REPLACE/RGBA.
+void filteringInitDisplay(ListBuilder& b);
+
+// A float's bits, as a vertex array holds it.
+u32 floatBits(float f);
 
 // The checkpoints a backend must pass at least (floors.cpp; they only rise).
 int floorOf(const std::string& test, const std::string& backend);
