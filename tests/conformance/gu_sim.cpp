@@ -83,6 +83,11 @@ u32 GuSim::readVram32(u32 offset) {
     return readLE32(mem_->vram() + offset);
 }
 
+const u8* GuSim::readBytes(u32 addr, u32 size) {
+    renderer_->flushToMemory();
+    return mem_->ptr(addr, size);
+}
+
 u16 GuSim::readVram16(u32 offset) {
     renderer_->flushToMemory();
     return readLE16(mem_->vram() + offset);

@@ -52,6 +52,8 @@ public:
     void writeVram(u32 offset, const void* data, u32 size) { cpuWrite(Memory::kVramBase + offset, data, size); }
     void fillVram32(u32 offset, u32 value, u32 words);
     u32 readVram32(u32 offset);
+    // A CPU read of guest memory after the GE's work has landed (nullptr outside valid memory).
+    const u8* readBytes(u32 addr, u32 size);
     u16 readVram16(u32 offset);
 
     Memory& memory() { return *mem_; }
