@@ -81,6 +81,8 @@ struct ge2gl_context {
     bool held = false;              // hold_interrupts: waiting for ge2gl_interrupt_ack
     // mem_written from a thread that cannot reach GL_CURRENT's context: applied on next entry.
     std::vector<std::pair<ge::u32, ge::u32>> pendingWrites;
+    // The last ge2gl_state_save's blob (valid until the next save or destroy).
+    std::vector<ge::u8> stateBlob;
 
     // Peek snapshot (snapMu only).
     std::mutex snapMu;

@@ -86,6 +86,7 @@ public:
     GeState& state() { return state_; }
     const GeState& state() const { return state_; }
     Memory& memory() { return mem_; }
+    const Memory& memory() const { return mem_; }
     ListRegs& list() { return list_; }
     const ListRegs& list() const { return list_; }
     const GeStats& stats() const { return stats_; }
@@ -115,6 +116,28 @@ public:
 
     // Address formation of §4.2: (BASE-high | arg) + OFFSET, masked to 28 bits.
     u32 formAddress(u32 arg24) const;
+
+    // Everything of the engine a save state keeps (hle/savestate.h): what cannot be re-derived.
+    // Taken and restored between commands only (never from inside run()).
+    struct Saved {
+        GeState state;
+        ListRegs list;
+        GeStats stats;
+        RunStatus status = RunStatus::Idle;
+        GeError lastError = GeError::None;
+        std::string lastErrorMsg;
+        u64 cycleLimit = ~u64(0);
+        bool pauseRequested = false, stopRequested = false;
+        RunStatus stopStatus = RunStatus::Idle;
+        GePrimType lastPrim = GE_PRIM_POINTS;
+        std::vector<ImmVertex> immVerts;  // an immediate-mode primitive being collected
+        u32 immFlags = 0;
+        GePrimType immPrim = GE_PRIM_POINTS;
+    };
+    Saved saved() const;
+    // Restores a saved engine: every dirty group is raised and the renderer is told the palette
+    // changed, so a backend re-derives all it caches from the state.
+    void restore(const Saved& s);
 
 private:
     void fail(GeError e, const std::string& msg);

@@ -44,6 +44,53 @@ SceGe::SceGe(GeEngine& engine) : engine_(engine) {
 
 SceGe::~SceGe() { engine_.setListener(nullptr); }
 
+SceGe::Saved SceGe::saved() const {
+    Saved s;
+    s.lists = lists_;
+    s.callbacks = callbacks_;
+    s.queue = queue_;
+    s.freeSlots = freeSlots_;
+    s.active = active_;
+    s.brokeInCallback = brokeInCallback_;
+    s.finishPending = finishPending_;
+    s.finishArg = finishArg_;
+    s.finishPc = finishPc_;
+    s.sdkVersion = sdkVersion_;
+    return s;
+}
+
+bool SceGe::validSaved(const Saved& s, std::string& why) {
+    std::array<int, kMaxLists> seen{};
+    for (const auto* d : {&s.queue, &s.freeSlots})
+        for (int i : *d) {
+            if (i < 0 || i >= kMaxLists) return why = "a list slot out of range", false;
+            if (seen[size_t(i)]++) return why = "a list slot queued or freed twice", false;
+        }
+    if (s.active < -1 || s.active >= kMaxLists) return why = "the active slot is out of range", false;
+    for (const DisplayList& dl : s.lists) {
+        if (dl.state > SceListState::Completed) return why = "a list state out of range", false;
+        if (dl.cbid < -1 || dl.cbid >= kMaxCallbacks) return why = "a callback ID out of range", false;
+        if (dl.regs.callDepth > 2 || dl.regs.signalStack.size() > 256)
+            return why = "a list's call stack is deeper than the GE allows", false;
+    }
+    return true;
+}
+
+void SceGe::restore(const Saved& s) {
+    lists_ = s.lists;
+    callbacks_ = s.callbacks;
+    queue_ = s.queue;
+    freeSlots_ = s.freeSlots;
+    active_ = s.active;
+    brokeInCallback_ = s.brokeInCallback;
+    finishPending_ = s.finishPending;
+    finishArg_ = s.finishArg;
+    finishPc_ = s.finishPc;
+    sdkVersion_ = s.sdkVersion;
+    inRun_ = yield_ = inEngine_ = false;
+    message_.clear();
+}
+
 s32 SceGe::fail(s32 code, const std::string& msg) const {
     message_ = msg;
     return code;

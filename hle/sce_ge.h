@@ -173,7 +173,7 @@ public:
     // Peek state of a list, or an error (for tests and the API's run info).
     SceListState listState(s32 id) const;
 
-private:
+    // The list slots and callbacks (public for save states, hle/savestate.h).
     struct DisplayList {
         SceListState state = SceListState::None;
         u32 startPc = 0, stall = 0;
@@ -188,6 +188,26 @@ private:
         bool used = false;
         u32 signalFunc = 0, signalArg = 0, finishFunc = 0, finishArg = 0;
     };
+
+    // Everything of the sceGe layer a save state keeps. Taken and restored outside run() only
+    // (between calls; never from a callback).
+    struct Saved {
+        std::array<DisplayList, kMaxLists> lists{};
+        std::array<Callback, kMaxCallbacks> callbacks{};
+        std::deque<int> queue, freeSlots;
+        int active = -1;
+        bool brokeInCallback = false, finishPending = false;
+        u32 finishArg = 0, finishPc = 0;
+        u32 sdkVersion = kDefaultSdkVersion;  // the game's; the host's wait budget is not state
+    };
+    Saved saved() const;
+    // Checks the queue and slot structure (false with `why` when it is not one SceGe could reach)
+    // before anything is changed.
+    static bool validSaved(const Saved& s, std::string& why);
+    void restore(const Saved& s);
+    bool inRun() const { return inRun_; }
+
+private:
 
     // GeListener
     void onSignal(u32 behaviour, u32 signalArg, u32 endArg, u32 pc) override;

@@ -5,7 +5,7 @@
 #
 #   bash scripts/fuzz.sh [SECONDS_PER_HARNESS] [HARNESS...]
 #
-# Harnesses: ppdmp_load replay_soft replay_gl list texture vertex spline api (default: all).
+# Harnesses: ppdmp_load replay_soft replay_gl list texture vertex spline api savestate (default: all).
 # Prints per harness: executions, exec/s, coverage (cov/ft of libFuzzer's last status line), corpus
 # size (inputs kept, in build-fuzz/corpus/NAME, seeds not counted) and findings; exits non-zero
 # when any harness finds a crash, leak, timeout or out-of-memory, naming the reproducer (run
@@ -16,7 +16,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 secs=${1:-60}
 shift || true
-all=(ppdmp_load replay_soft replay_gl list texture vertex spline api)
+all=(ppdmp_load replay_soft replay_gl list texture vertex spline api savestate)
 harnesses=("$@")
 ((${#harnesses[@]})) || harnesses=("${all[@]}")
 build=${GE2GL_FUZZ_BUILD:-$root/build-fuzz}

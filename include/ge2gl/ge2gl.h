@@ -59,7 +59,7 @@ extern "C" {
 /* API version: major in bits 31..16, minor in 15..0. A host built against major M works with any
  * library of major M and a minor at least its own. */
 #define GE2GL_API_VERSION_MAJOR 1
-#define GE2GL_API_VERSION_MINOR 2
+#define GE2GL_API_VERSION_MINOR 3
 #define GE2GL_API_VERSION ((uint32_t)((GE2GL_API_VERSION_MAJOR << 16) | GE2GL_API_VERSION_MINOR))
 
 typedef struct ge2gl_context ge2gl_context; /* opaque handle */
@@ -311,6 +311,23 @@ GE2GL_API ge2gl_status ge2gl_frame_texture(ge2gl_context* h, uint32_t addr, uint
 GE2GL_API ge2gl_status ge2gl_frame_texture_sized(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format,
                                                  uint32_t width, uint32_t height, uint32_t out_width,
                                                  uint32_t out_height, uint32_t* out_texture);
+
+/* ---- Save states (API 1.3; format: docs/savestate.md) ------------------------------------ */
+/* Include guest RAM, VRAM and the scratchpad (zstd-compressed) in the state. Without it the host
+   saves its own memory; VRAM still holds every pixel drawn (GL render targets are written back). */
+#define GE2GL_STATE_WITH_MEMORY 1u
+
+/* Serialises the whole GE at this point (between commands, including mid-list at a stall or with
+   an interrupt held): registers, matrices, palette, every list's state and the queue, callbacks,
+   the GE-time count. *out_data points to the blob, owned by ge2gl and valid until the next
+   ge2gl_state_save or ge2gl_destroy on h. GE2GL_ERR_REENTRANT from inside a callback. */
+GE2GL_API ge2gl_status ge2gl_state_save(ge2gl_context* h, uint32_t flags, const void** out_data, size_t* out_size);
+/* Restores a blob from ge2gl_state_save of any backend. The blob is checked whole first: a corrupt,
+   truncated or foreign one gives GE2GL_ERR_INVALID_ARGUMENT with the reason in
+   ge2gl_last_message() and leaves the GE as it was. Every backend cache is dropped (guest memory
+   is read again when next used): a host that restores its own memory does so before this call,
+   or calls ge2gl_mem_written after it. */
+GE2GL_API ge2gl_status ge2gl_state_load(ge2gl_context* h, const void* data, size_t size);
 
 /* ---- Dump replay (integration testing) -------------------------------------------------- */
 /* The frame buffer a dump displays (its last DISPLAY record, or the last drawing target). */

@@ -150,6 +150,19 @@ public:
         return call<uint32_t>([&](uint32_t* v) { return ge2gl_edram_set_translation(h_, value, v); });
     }
 
+    // ---- save states (docs/savestate.md) ----
+    // The blob, copied out of ge2gl's buffer. flags: GE2GL_STATE_WITH_MEMORY or 0.
+    Result<std::vector<uint8_t>> saveState(uint32_t flags = 0) {
+        return call<std::vector<uint8_t>>([&](std::vector<uint8_t>* v) {
+            const void* data = nullptr;
+            size_t size = 0;
+            ge2gl_status s = ge2gl_state_save(h_, flags, &data, &size);
+            if (s == GE2GL_OK) v->assign(static_cast<const uint8_t*>(data), static_cast<const uint8_t*>(data) + size);
+            return s;
+        });
+    }
+    Status loadState(const std::vector<uint8_t>& blob) { return {ge2gl_state_load(h_, blob.data(), blob.size())}; }
+
     // ---- execution and frames ----
     Result<ge2gl_run_info> run(uint64_t maxCommands) {
         return call<ge2gl_run_info>([&](ge2gl_run_info* v) { return ge2gl_run(h_, maxCommands, v); });

@@ -2,14 +2,15 @@
 // project's dumps (and any others given): each dump is replayed with the dump player on a
 // GeEngine whose renderer records, per distinct vertex format / texture format / patch, an input
 // in the format of the vertex (f), texture (e) and spline (g) harnesses; the dump's REGISTERS
-// words become a display list for the list (d) and C ABI (h) harnesses.
+// words become a display list for the list (d) and C ABI (h) harnesses, and the GE at the end of
+// the frame a save-state payload for the save-state harness (i).
 //
 // Every dump is also written in the replay harnesses' uncompressed "open" form (fuzz_common.h).
 //
 // The loader harness gets the files themselves (and the .ppdmp inside each zip), up to 1 MiB.
 //
 // Usage: fuzz_seeds OUTDIR DUMP...
-//        (writes OUTDIR/{load,replay,list,texture,vertex,spline,api}/NAME-N)
+//        (writes OUTDIR/{load,replay,list,texture,vertex,spline,api,savestate}/NAME-N)
 // The input formats are those described at the top of each harness.
 #include <cstdio>
 #include <cstring>
@@ -23,6 +24,7 @@
 
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
+#include "hle/savestate.h"
 #include "hle/texture_decoder.h"
 #include "hle/vertex_decoder.h"
 #include "tests/fuzz/fuzz_common.h"
@@ -366,6 +368,14 @@ int main(int argc, char** argv) {
         dump::ReplayOptions opt;
         dump::ReplayResult res;
         dump::replayDump(d, eng, opt, res, err);
+        {
+            // The save-state harness: the GE at the end of the frame, as a payload (mode 1).
+            SceGe sce(eng);
+            std::vector<u8> st = savestate::save(eng, sce, nullptr, {});
+            st.erase(st.begin(), st.begin() + savestate::kHeaderSize);
+            st.insert(st.begin(), u8(1));
+            s.write("savestate", st);
+        }
         listSeeds(d, s);
         for (const dump::Dump& p : pieces(d, 48 << 10, 4)) s.write("replay", fuzz::toOpenForm(p), fuzz::kMaxInput);
     }
