@@ -24,6 +24,7 @@ ge2gl_interrupt convert(const ge::SceInterrupt& in) {
     out.end_arg = in.endArg;
     out.func = in.func;
     out.func_arg = in.funcArg;
+    out.tick = in.tick;
     return out;
 }
 
@@ -343,6 +344,42 @@ void ge2gl_context::workerLoop() {
     idle.notify_all();
 }
 
+namespace {
+
+// ge2gl_run and ge2gl_run_until: at most max_commands, stopping between commands once the GE
+// time reaches `tick`.
+ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2gl_run_info* out) {
+    Call c(h);
+    if (h->workerMode) return c.error(GE2GL_ERR_BAD_STATE, "the worker thread runs the GE; use the sync functions to wait");
+    if (reentrant(h)) return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
+    ge::SceRunResult r = h->sce->peekRun();
+    if (max_commands && !h->held && h->sce->canProgress()) {
+        if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
+        h->sce->setTickStop(tick);
+        r = drive(h, c, max_commands);
+        h->sce->setTickStop(~u64(0));
+        if (r.state == ge::SceRunState::Reentrant)
+            return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
+    }
+    if (out) {
+        switch (r.state) {
+        case ge::SceRunState::Idle: out->ge_state = GE2GL_GE_IDLE; break;
+        case ge::SceRunState::Stalled: out->ge_state = GE2GL_GE_STALLED; break;
+        case ge::SceRunState::Paused: out->ge_state = GE2GL_GE_PAUSED; break;
+        case ge::SceRunState::Hung: out->ge_state = GE2GL_GE_HUNG; break;
+        default: out->ge_state = GE2GL_GE_READY; break;
+        }
+        if (h->held) out->ge_state = GE2GL_GE_INTERRUPT;
+        out->list_id = r.listId;
+        out->pc = r.pc;
+        out->stall = r.stall;
+        out->commands = max_commands ? r.commands : 0;
+    }
+    return GE2GL_OK;
+}
+
+}  // namespace
+
 extern "C" {
 
 ge2gl_status ge2gl_list_sync(ge2gl_context* h, int32_t id, int32_t mode, int32_t* out_state) {
@@ -418,31 +455,29 @@ ge2gl_status ge2gl_draw_sync(ge2gl_context* h, int32_t mode, int32_t* out_state)
 }
 
 ge2gl_status ge2gl_run(ge2gl_context* h, uint64_t max_commands, ge2gl_run_info* out) {
+    return guarded(h, [&]() -> ge2gl_status { return runFor(h, max_commands, ~uint64_t(0), out); });
+}
+
+ge2gl_status ge2gl_run_until(ge2gl_context* h, uint64_t tick, ge2gl_run_info* out) {
+    return guarded(h, [&]() -> ge2gl_status { return runFor(h, h->waitBudget, tick, out); });
+}
+
+ge2gl_status ge2gl_get_tick(ge2gl_context* h, uint64_t* out_tick) {
     return guarded(h, [&]() -> ge2gl_status {
         Call c(h);
-        if (h->workerMode) return c.error(GE2GL_ERR_BAD_STATE, "the worker thread runs the GE; use the sync functions to wait");
-        if (reentrant(h)) return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
-        ge::SceRunResult r = h->sce->peekRun();
-        if (max_commands && !h->held && h->sce->canProgress()) {
-            if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
-            r = drive(h, c, max_commands);
-            if (r.state == ge::SceRunState::Reentrant)
-                return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
-        }
-        if (out) {
-            switch (r.state) {
-            case ge::SceRunState::Idle: out->ge_state = GE2GL_GE_IDLE; break;
-            case ge::SceRunState::Stalled: out->ge_state = GE2GL_GE_STALLED; break;
-            case ge::SceRunState::Paused: out->ge_state = GE2GL_GE_PAUSED; break;
-            case ge::SceRunState::Hung: out->ge_state = GE2GL_GE_HUNG; break;
-            default: out->ge_state = GE2GL_GE_READY; break;
-            }
-            if (h->held) out->ge_state = GE2GL_GE_INTERRUPT;
-            out->list_id = r.listId;
-            out->pc = r.pc;
-            out->stall = r.stall;
-            out->commands = max_commands ? r.commands : 0;
-        }
+        if (!out_tick) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_tick is NULL");
+        *out_tick = h->engine->stats().cycles;
+        return GE2GL_OK;
+    });
+}
+
+ge2gl_status ge2gl_list_ticks(ge2gl_context* h, int32_t id, uint64_t* out_ticks) {
+    return guarded(h, [&]() -> ge2gl_status {
+        Call c(h);
+        if (!out_ticks) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_ticks is NULL");
+        const ge::s64 t = h->sce->listCycles(id);
+        if (t < 0) return c.error(GE2GL_SCE_ERROR_INVALID_ID, "no list with this ID");
+        *out_ticks = uint64_t(t);
         return GE2GL_OK;
     });
 }

@@ -93,7 +93,7 @@ void GeEngine::startList(u32 pc, u32 stall) {
     setStall(stall);
     state_.offsetAddr = 0;
     status_ = RunStatus::Budget;  // ready to run
-    stats_.cycles += getime::kListStart;
+    charge(getime::kListStart, &GeStats::cyclesCommands);
     lastError_ = GeError::None;
     lastErrorMsg_.clear();
     pauseRequested_ = false;
@@ -144,6 +144,10 @@ RunStatus GeEngine::run(u64 maxCommands) {
         }
         if (stats_.cycles >= cycleLimit_) {
             status_ = RunStatus::TimeLimit;
+            break;
+        }
+        if (stats_.cycles >= cycleStop_) {
+            status_ = RunStatus::Budget;
             break;
         }
         const u8* p = mem_.ptr(list_.pc, 4);
@@ -205,7 +209,7 @@ void GeEngine::execute(u32 word) {
     const u8 op = u8(word >> 24);
     const u32 arg = word & 0xFFFFFF;
     ++stats_.commands;
-    stats_.cycles += getime::kPerCommand;
+    charge(getime::kPerCommand, &GeStats::cyclesCommands);
 
     // Immediate-mode vertices end at the first command that is not part of them.
     if (!immVerts_.empty() && (op < GE_CMD_X2 || op > GE_CMD_I2)) flushImmediate();
@@ -389,7 +393,7 @@ bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) 
 // space with OFFSETX/Y) or behind the near plane. An area touching the 4096 screen edge always passes.
 bool GeEngine::chargeDraw(u64 vertexCycles) {
     if (cycleLimit_ == ~u64(0)) {
-        stats_.cycles += vertexCycles;
+        charge(vertexCycles, &GeStats::cyclesVertices);
         if (pixelBudgetSet_) renderer_->setPixelBudget(~u64(0)), pixelBudgetSet_ = false;
         return true;
     }
@@ -401,7 +405,7 @@ bool GeEngine::chargeDraw(u64 vertexCycles) {
         stopStatus_ = RunStatus::TimeLimit;
         return false;
     }
-    stats_.cycles += vertexCycles;
+    charge(vertexCycles, &GeStats::cyclesVertices);
     renderer_->setPixelBudget((cycleLimit_ - stats_.cycles) * 3);  // pixelCost: 1/3 cycle a pixel
     pixelBudgetSet_ = true;
     return true;
@@ -409,14 +413,16 @@ bool GeEngine::chargeDraw(u64 vertexCycles) {
 
 void GeEngine::chargePixels() {
     const u64 w = renderer_->pixelWork();
-    if (w > pixelWorkSeen_) stats_.cycles += getime::pixelCost(w - pixelWorkSeen_);
+    if (w > pixelWorkSeen_) {
+        charge(getime::pixelCost(w - pixelWorkSeen_), &GeStats::cyclesPixels);
+    }
     pixelWorkSeen_ = w;
 }
 
 void GeEngine::doBBox(u32 arg) {
     ++stats_.bboxes;
     const u32 n = arg & 0xFFFF;
-    stats_.cycles += getime::kPerBBoxVertex * n;
+    charge(getime::kPerBBoxVertex * n, &GeStats::cyclesCommands);
     const u32 stride = state_.vertexStride();
     const u32 isize = state_.indexSize();
     const u32 vbase = state_.vertexAddr, ibase = state_.indexAddr;
@@ -489,7 +495,7 @@ void GeEngine::doTransfer(u32 arg) {
     t.height = state_.XSIZE_h1() + 1;
     t.bpp = (arg & 1) ? 4 : 2;
     ++stats_.transfers;
-    stats_.cycles += getime::transferCost(u64(t.width) * t.height * t.bpp);
+    charge(getime::transferCost(u64(t.width) * t.height * t.bpp), &GeStats::cyclesTransfers);
     renderer_->blockTransfer(t, mem_);
 }
 
@@ -555,7 +561,7 @@ void GeEngine::doImmediate(u32 arg) {
 
 void GeEngine::doEnd(u32 arg) {
     const u32 pc = list_.pc;
-    stats_.cycles += getime::kEnd;
+    charge(getime::kEnd, &GeStats::cyclesCommands);
     if (list_.lastOp == GE_CMD_SIGNAL) {
         const u32 sig = list_.lastWord;
         const u32 behaviour = (sig >> 16) & 0xFF, sarg = sig & 0xFFFF;

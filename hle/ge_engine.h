@@ -73,6 +73,10 @@ struct GeStats {
     u64 transfers = 0, clutLoads = 0, signals = 0, finishes = 0, unknownCommands = 0;
     u64 stateChanges = 0;  // register words that changed value
     u64 cycles = 0;        // GE-time estimate (hle/ge_time.h), 222 MHz cycles
+    // Where the cycles went (docs/timing.md): commands (with list starts, ENDs and BBOX tests),
+    // vertex work of draws, pixel fill, block transfers. They add up to `cycles` except when the
+    // GE-time limit cut a draw short.
+    u64 cyclesCommands = 0, cyclesVertices = 0, cyclesPixels = 0, cyclesTransfers = 0;
 };
 
 class GeEngine {
@@ -99,6 +103,10 @@ public:
     // Stop with RunStatus::TimeLimit once the GE-time estimate (stats().cycles, hle/ge_time.h)
     // reaches `cycles` (~0: no limit, the default).
     void setTimeLimit(u64 cycles) { cycleLimit_ = cycles; }
+    // Stop with RunStatus::Budget between commands once stats().cycles reaches `cycles` (a host
+    // running the GE to an emulated time; ~0: none). Unlike the limit, it never cuts a draw: the
+    // command that crosses it completes.
+    void setCycleStop(u64 cycles) { cycleStop_ = cycles; }
     RunStatus status() const { return status_; }
     // Ask the running list to pause after the current command (sceGeBreak); resume() clears it.
     void requestPause() { pauseRequested_ = true; }
@@ -151,6 +159,11 @@ private:
     void doEnd(u32 arg);
     bool jumpTo(u32 target);
     void matrixData(u8 op, u32 arg);
+    // Adds to the GE-time estimate and to one of its parts.
+    void charge(u64 cycles, u64 GeStats::*part) {
+        stats_.cycles += cycles;
+        stats_.*part += cycles;
+    }
     void chargePixels();  // adds the renderer's new pixel work to the GE-time estimate
     // Charges the vertex work of a draw; false (and the run stops with TimeLimit) when it does not
     // fit in what is left of the GE-time limit. Hands the renderer the pixels that remain.
@@ -168,6 +181,7 @@ private:
     std::string lastErrorMsg_;
     u32 dirty_ = DIRTY_ALL;
     u64 cycleLimit_ = ~u64(0);
+    u64 cycleStop_ = ~u64(0);
     u64 pixelWorkSeen_ = 0;
     bool pixelBudgetSet_ = false;
     bool pauseRequested_ = false;

@@ -193,13 +193,15 @@ void getList(Reader& r, ListRegs& l) {
 
 void putStats(Writer& w, const GeStats& s) {
     for (u64 v : {s.commands, s.prims, s.patches, s.immediates, s.vertices, s.bboxes, s.transfers, s.clutLoads,
-                  s.signals, s.finishes, s.unknownCommands, s.stateChanges, s.cycles})
+                  s.signals, s.finishes, s.unknownCommands, s.stateChanges, s.cycles, s.cyclesCommands, s.cyclesVertices,
+                  s.cyclesPixels, s.cyclesTransfers})
         w.u64v(v);
 }
 
 void getStats(Reader& r, GeStats& s) {
     for (u64* v : {&s.commands, &s.prims, &s.patches, &s.immediates, &s.vertices, &s.bboxes, &s.transfers,
-                   &s.clutLoads, &s.signals, &s.finishes, &s.unknownCommands, &s.stateChanges, &s.cycles})
+                   &s.clutLoads, &s.signals, &s.finishes, &s.unknownCommands, &s.stateChanges, &s.cycles,
+                   &s.cyclesCommands, &s.cyclesVertices, &s.cyclesPixels, &s.cyclesTransfers})
         *v = r.u64v();
 }
 
@@ -290,6 +292,7 @@ void putSce(Writer& w, const SceGe::Saved& s, u32 edramTranslation) {
         putList(w, dl.regs);
         w.u32v(dl.offset);
         w.u32v(dl.base);
+        w.u64v(dl.cycles);
     }
     for (const auto& cb : s.callbacks) {
         w.b(cb.used);
@@ -320,6 +323,7 @@ void getSce(Reader& r, SceGe::Saved& s, u32& edramTranslation) {
         getList(r, dl.regs);
         dl.offset = r.u32v();
         dl.base = r.u32v();
+        dl.cycles = r.u64v();
     }
     for (auto& cb : s.callbacks) {
         cb.used = r.b();

@@ -134,6 +134,7 @@ void SceGe::load(int i) {
     if (active_ == i) return;
     saveActive();
     DisplayList& dl = lists_[i];
+    const u64 c0 = engine_.stats().cycles;  // starting the list is its GE time (kListStart)
     if (!dl.started) {
         // The list's context buffer receives the state at the moment the list starts and is
         // restored at its FINISH (§4.7). (The firmware copies the previous list's saved context
@@ -153,6 +154,7 @@ void SceGe::load(int i) {
         engine_.state().offsetAddr = dl.offset;
         engine_.state().regs[GE_CMD_BASE] = dl.base;
     }
+    dl.cycles += engine_.stats().cycles - c0;
     active_ = i;
 }
 
@@ -191,6 +193,7 @@ SceInterrupt SceGe::makeInterrupt(int slot, bool finish, u32 arg, u32 pc) const 
     in.arg = arg & 0xFFFF;
     // The callback's third argument is the list address, 0 for games built with SDK <= 2.00.10.
     in.pc = sdkOld() ? 0 : pc;
+    in.tick = engine_.stats().cycles;
     if (dl.cbid >= 0 && dl.cbid < kMaxCallbacks && callbacks_[dl.cbid].used) {
         const Callback& cb = callbacks_[dl.cbid];
         in.registered = true;
@@ -358,6 +361,11 @@ s32 SceGe::listUpdateStallAddr(s32 id, u32 stall) {
 SceListState SceGe::listState(s32 id) const {
     int i = slotOf(id);
     return i < 0 ? SceListState::None : lists_[i].state;
+}
+
+s64 SceGe::listCycles(s32 id) const {
+    const int i = slotOf(id);
+    return i < 0 || lists_[i].state == SceListState::None ? -1 : s64(lists_[i].cycles);
 }
 
 s32 SceGe::listSync(s32 id, int mode) {
@@ -615,6 +623,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     u64 used = 0;
     for (;;) {
         if (queue_.empty()) break;
+        if (engine_.stats().cycles >= tickStop_) break;
         const int i = queue_.front();
         DisplayList& dl = lists_[i];
         if (dl.state == SceListState::Queued) startFront();
@@ -625,10 +634,13 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
         // pause): the list is running again, so let the engine go on.
         if (engine_.status() == RunStatus::Paused) engine_.resume();
         finishPending_ = false;
-        const u64 before = engine_.stats().commands;
+        const u64 before = engine_.stats().commands, cyclesBefore = engine_.stats().cycles;
         inEngine_ = true;
         const RunStatus s = engine_.run(maxCommands - used);
         inEngine_ = false;
+        // The GE time of this pass is the list's (load() charged its start; the next list's
+        // start, when this one completes below, is that list's).
+        dl.cycles += engine_.stats().cycles - cyclesBefore;
         used += engine_.stats().commands - before;
         if (s == RunStatus::Completed || s == RunStatus::Error) {
             // An error drops the list and the queue moves on (PPSSPP); the error callback has

@@ -72,6 +72,7 @@ struct SceInterrupt {
     u32 pc = 0;           // list address after the END (third argument; 0 for SDK <= 2.00.10)
     u32 endArg = 0;       // the END word's argument
     u32 func = 0, funcArg = 0;  // from sceGeSetCallback for cbid (0 when not registered)
+    u64 tick = 0;               // the GE-time estimate when it occurred (GeStats::cycles)
     bool registered = false;    // cbid names a registered callback
 };
 
@@ -172,6 +173,13 @@ public:
     void requestYield();
     // Peek state of a list, or an error (for tests and the API's run info).
     SceListState listState(s32 id) const;
+    // GE time spent running list `id` so far (-1 when the ID names no list).
+    s64 listCycles(s32 id) const;
+    // run() stops between commands once the GE-time estimate reaches `cycles` (~0: no stop).
+    void setTickStop(u64 cycles) {
+        tickStop_ = cycles;
+        engine_.setCycleStop(cycles);
+    }
 
     // The list slots and callbacks (public for save states, hle/savestate.h).
     struct DisplayList {
@@ -183,6 +191,7 @@ public:
         bool hung = false;
         ListRegs regs;
         u32 offset = 0, base = 0;
+        u64 cycles = 0;  // GE time spent running this list (PPSSPP's GetListTicks)
     };
     struct Callback {
         bool used = false;
@@ -249,6 +258,7 @@ private:
     u32 finishArg_ = 0, finishPc_ = 0;
     u32 sdkVersion_ = kDefaultSdkVersion;
     u64 waitBudget_ = u64(1) << 26;
+    u64 tickStop_ = ~u64(0);
     mutable std::string message_;
 };
 

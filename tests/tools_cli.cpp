@@ -40,6 +40,27 @@ TEST(Cli, InfoReportsCounts) {
     EXPECT_NE(r.out.find("INIT"), std::string::npos);
 }
 
+// info --timing: the GE-time estimate of the frame and its parts (docs/timing.md), which add up.
+TEST(Cli, InfoTimingReportsTheGeTimeInParts) {
+    CliRun r = run("info --timing " + scene("lit_textured_skinned"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    double total = 0, c = 0, v = 0, p = 0, t = 0, pp = 0;
+    const size_t at = r.out.find("GE time:");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "GE time: %lf ms", &total), 1) << r.out;
+    const size_t parts = r.out.find("commands ", at);
+    ASSERT_NE(parts, std::string::npos) << r.out;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + parts, "commands %lf ms, vertices %lf ms, pixels %lf ms, transfers %lf ms", &c, &v, &p, &t), 4)
+        << r.out;
+    const size_t model = r.out.find("PPSSPP's model (no pixel fill): ");
+    ASSERT_NE(model, std::string::npos) << r.out;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + model, "PPSSPP's model (no pixel fill): %lf", &pp), 1);
+    EXPECT_GT(v, 0.1);   // a lit, skinned scene: vertex work
+    EXPECT_GT(p, 0.01);  // and pixels filled
+    EXPECT_NEAR(total, c + v + p + t, 0.0021);
+    EXPECT_NEAR(pp, total - p, 0.0011);
+}
+
 TEST(Cli, DisasmPrintsEveryCommand) {
     dump::Dump d;
     std::string err;

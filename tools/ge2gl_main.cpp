@@ -47,7 +47,30 @@ int fail(const std::string& msg) {
     return 1;
 }
 
-int cmdInfo(const std::vector<std::string>& files) {
+// `info --timing`: the frame replayed on the software model (its bounding boxes give the pixel
+// work) and the GE-time estimate of hle/ge_time.h, in parts (docs/timing.md).
+void printTiming(const dump::Dump& d) {
+    tools::RenderOptions opt;
+    tools::RenderOutput out;
+    std::string err;
+    if (!tools::renderDump(d, opt, out, err)) {
+        std::printf("  GE time:   not measured: %s\n", err.c_str());
+        return;
+    }
+    const GeStats& s = out.engineStats;
+    auto ms = [](u64 c) { return getime::msFromCycles(c); };
+    const u64 copies = out.replay.geCycles > s.cycles ? out.replay.geCycles - s.cycles : 0;
+    std::printf("  GE time:   %.3f ms (%llu ticks at 222 MHz)\n", ms(s.cycles), (unsigned long long)s.cycles);
+    std::printf("    commands %.3f ms, vertices %.3f ms, pixels %.3f ms, transfers %.3f ms\n", ms(s.cyclesCommands),
+                ms(s.cyclesVertices), ms(s.cyclesPixels), ms(s.cyclesTransfers));
+    // PPSSPP's estimate counts the same commands, vertices and transfers (its formulas are the
+    // model's) but no pixel fill.
+    std::printf("    PPSSPP's model (no pixel fill): %.3f ms\n", ms(s.cycles - s.cyclesPixels));
+    std::printf("  replay copies: %.3f ms (memory the dump's player writes, charged as DMA)\n", ms(copies));
+    if (out.replay.timeLimitHit) std::printf("  (cut short by the GE-time budget: %s)\n", out.replay.warning.c_str());
+}
+
+int cmdInfo(const std::vector<std::string>& files, bool timing) {
     int rc = 0;
     for (const auto& path : files) {
         dump::Dump d;
@@ -70,6 +93,7 @@ int cmdInfo(const std::vector<std::string>& files) {
                     (unsigned long long)s.prims, (unsigned long long)s.patches);
         std::printf("  transfers: %llu\n  clut loads: %llu\n", (unsigned long long)s.transfers,
                     (unsigned long long)s.clutLoads);
+        if (timing) printTiming(d);
     }
     return rc;
 }
@@ -264,6 +288,9 @@ int main(int argc, char** argv) {
     std::vector<std::string> infoFiles;
     auto* info = app.add_subcommand("info", "version, game ID, record counts, draws and commands");
     info->add_option("DUMP", infoFiles)->required();
+    bool infoTiming = false;
+    info->add_flag("--timing", infoTiming,
+                   "replay on the software model and print the GE-time estimate of the frame, in parts (docs/timing.md)");
 
     std::string disasmFile;
     auto* disasm = app.add_subcommand("disasm", "one line per command");
@@ -416,7 +443,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "ge2gl: %s\n", optErr.c_str());
         return 2;
     }
-    if (*info) return cmdInfo(infoFiles);
+    if (*info) return cmdInfo(infoFiles, infoTiming);
     if (*disasm) return cmdDisasm(disasmFile);
     if (*render) return cmdRender(renderFile, ropt, outPng, depthOut, vramOut, stats);
     if (*compare)

@@ -144,6 +144,9 @@ typedef struct ge2gl_interrupt {
     uint32_t end_arg;    /* argument of the END word after the SIGNAL */
     uint32_t func;       /* guest function registered for this callback (signal or finish) */
     uint32_t func_arg;   /* its second argument */
+    /* API 1.3: the GE time at which it occurred, in ticks of the PSP's 222 MHz clock since the
+       handle was created (docs/timing.md; ge2gl_get_tick). */
+    uint64_t tick;
 } ge2gl_interrupt;
 
 /* Host callbacks; every pointer may be NULL. They run on the thread that runs the GE (inside
@@ -289,6 +292,18 @@ typedef struct ge2gl_run_info {
 /* Runs queued lists in order for at most max_commands commands (0 only reports the position).
    out may be NULL. GE2GL_ERR_BAD_STATE in worker-thread mode. */
 GE2GL_API ge2gl_status ge2gl_run(ge2gl_context* h, uint64_t max_commands, ge2gl_run_info* out);
+/* ---- GE time (API 1.3; docs/timing.md) ---- */
+/* The GE-time estimate so far: ticks of the PSP's 222 MHz clock the GE's work would have taken
+   since the handle was created (commands, vertices, pixels, transfers). */
+GE2GL_API ge2gl_status ge2gl_get_tick(ge2gl_context* h, uint64_t* out_tick);
+/* GE time spent running list id (PPSSPP's GetListTicks): GE2GL_SCE_ERROR_INVALID_ID for an ID
+   that names no list. */
+GE2GL_API ge2gl_status ge2gl_list_ticks(ge2gl_context* h, int32_t id, uint64_t* out_ticks);
+/* As ge2gl_run, but runs until the GE time reaches `tick` (the command that crosses it completes),
+   the GE cannot go on, or config.wait_budget commands ran: a host that schedules the GE in
+   emulated time calls it with its own next event's time, and interrupts come at their tick. */
+GE2GL_API ge2gl_status ge2gl_run_until(ge2gl_context* h, uint64_t tick, ge2gl_run_info* out);
+
 /* config.hold_interrupts: the host has handled the interrupt(s) delivered so far; the GE goes on.
    GE2GL_ERR_BAD_STATE when no interrupt is held. */
 GE2GL_API ge2gl_status ge2gl_interrupt_ack(ge2gl_context* h);
