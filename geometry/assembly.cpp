@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include "geometry/texture_size.h"
+
 namespace ge::geo {
 
 RectDetect RectDetect::fromState(const GeState& st, bool through, bool textured, bool fresh) {
@@ -93,7 +95,8 @@ void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std:
                        std::vector<u32>& seq) {
     const bool through = st.isThrough();
     const bool projective = !through && st.TMAP_mode() == 1;
-    const float invW = 1.0f / float(st.textureWidth(0)), invH = 1.0f / float(st.textureHeight(0));
+    // Through mode's texel coordinates over the unclamped 2^n (texture_size.h), as in transform.cpp.
+    const float invW = 1.0f / float(texCoordWidth(st, 0)), invH = 1.0f / float(texCoordHeight(st, 0));
     auto to16 = [](float v) {
         float t = v * 16.0f;
         if (!(t > -1048576.0f)) t = -1048576.0f;  // also NaN

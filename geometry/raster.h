@@ -55,7 +55,7 @@ struct RasterParams {
     bool needW = false;      // TLEVEL mode 2: per-pixel clip W
     bool fog = false;        // convert the interpolated fog factor (else fog = 255)
     bool through = false;    // through mode: texture coordinates screen-linear (no 1/w weighting)
-    float texW0 = 1, texH0 = 1;  // level-0 texture size (for the level of detail)
+    float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 
 // Rows owned by one rasterising thread: blocks of 16 rows are dealt round-robin to `count` bands,

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/texture_size.h"
+
 namespace ge::geo {
 
 namespace {
@@ -57,8 +59,9 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     ts.through = (vtype >> 23) & 1;
     ts.hasColor = hasColor;
     ts.hasNormal = hasNormal;
-    ts.invTexW0 = 1.0f / float(st.textureWidth(0));
-    ts.invTexH0 = 1.0f / float(st.textureHeight(0));
+    // Through mode divides by the unclamped 2^n, as the sampler multiplies by it (texture_size.h).
+    ts.invTexW0 = 1.0f / float(texCoordWidth(st, 0));
+    ts.invTexH0 = 1.0f / float(texCoordHeight(st, 0));
     if (ts.through) return ts;
 
     ts.clipEnable = st.CLE_on();

@@ -40,7 +40,7 @@ struct TransformState {
     // the rectangle (see makeTransformState).
     bool rectAsTriangles = false;
     float su = 1, sv = 1, tu = 0, tv = 0;
-    float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 size (through-mode texel coordinates)
+    float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 2^n, unclamped (through-mode texel coordinates; texture_size.h)
     bool fog = false;
     int fogFixed = -1;           // −1: per vertex; 0/1: the whole draw gets f = 0/1 (§8.9 specials)
     float fogEnd = 0, fogSlope = 0;

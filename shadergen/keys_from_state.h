@@ -51,7 +51,9 @@ struct FsUniforms {
     s32 dither[16] = {};
     s32 keepMask[4] = {};  // write-protect bits, already limited to the frame-buffer format's bits
     s32 minZ = 0, maxZ = 0xFFFF;
-    s32 texLevels[8][4] = {};  // per level: atlas y offset, width, height, 0 (render target: y, w, h, x origin in target texels)
+    // per level: atlas y offset, coordinate size 2^n w, h (unclamped, geometry/texture_size.h), 0
+    // (render target: y, 2^n w, h, x origin in target texels)
+    s32 texLevels[8][4] = {};
     s32 texScale = 1;          // texels of u_tex per PSP texel (render scale of a render-target texture)
     s32 clutShift = 0, clutMask = 0;  // CLUT16/32 read from a render target (FsKey::texTarget)
     s32 texMaxLevel = 0;

@@ -429,19 +429,23 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         if (k.texTarget) s += "uniform int u_texScale;\n";
         if (k.texTarget && k.texFormat >= GE_TFMT_CLUT4) s += "uniform usampler2D u_clutTex;\nuniform ivec2 u_clut;\n";
         if (!k.texTarget) {
+            // L.yz is the level's coordinate size 2^n, past 512 too; the atlas holds its
+            // min(2^n, 512) texels, all the index below can reach (geometry/texture_size.h
+            // texelClampMax, texelWrapMask).
             s += "ivec4 texel(int lv, int u, int v) {\n"
                  "  ivec4 L = u_texLevels[lv];\n";
             // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ref §8.10).
             s += k.texClampU ? "  u = clamp(u, 0, min(L.y, 512) - 1);\n" : "  u = u & (L.y - 1) & 511;\n";
             s += k.texClampV ? "  v = clamp(v, 0, min(L.z, 512) - 1);\n" : "  v = v & (L.z - 1) & 511;\n";
-            s += "  u = min(u, L.y - 1); v = min(v, L.z - 1);\n"
-                 "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
+            s += "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
                  "}\n";
         } else {
             emitTargetTexel(s, k);
         }
         // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
-        // the sample point half a texel and keeps a 4-bit fraction (ref §8.10).
+        // the sample point half a texel and keeps a 4-bit fraction (ref §8.10). The scale is the
+        // unclamped 2^n of u_texLevels.yz (geometry/texture_size.h: a PSP reads texel 2 at pixel
+        // 0 of a 1024-wide texture over 256 pixels).
         // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
         // Linear rounds to nearest, ties to even, instead (sampler.cpp texelFixedRound).
         s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n"

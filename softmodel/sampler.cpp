@@ -5,22 +5,24 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/texture_size.h"
+
 namespace ge::soft {
 
 void TexLevel::setSize(u32 wlog, u32 hlog, int sw, int sh) {
     storedW = std::max(sw, 1);
     storedH = std::max(sh, 1);
-    wlog = std::min<u32>(wlog, 15);
-    hlog = std::min<u32>(hlog, 15);
-    // Exact powers of two: s·scale equals the reference's (s·w)·256 bit for bit.
-    scaleU = float(1u << wlog) * 256.0f;
-    scaleV = float(1u << hlog) * 256.0f;
+    // The scale is the full 2^n, past 512 too; only the texel index stops at 511
+    // (geometry/texture_size.h, with the PSP's values). Exact powers of two: s·scale equals the
+    // reference's (s·w)·256 bit for bit.
+    scaleU = float(geo::texCoordSize(wlog)) * 256.0f;
+    scaleV = float(geo::texCoordSize(hlog)) * 256.0f;
     // Ref §8.10: repeat u & (w − 1) & 511; clamp 0 … min(w, 512) − 1. The stored size bound only
     // matters if a decoder ever returned fewer texels than the nominal size.
-    wrapMaskU = int(((1u << wlog) - 1) & 511);
-    wrapMaskV = int(((1u << hlog) - 1) & 511);
-    clampMaxU = int(std::min<u32>(1u << wlog, 512) - 1);
-    clampMaxV = int(std::min<u32>(1u << hlog, 512) - 1);
+    wrapMaskU = geo::texelWrapMask(wlog);
+    wrapMaskV = geo::texelWrapMask(hlog);
+    clampMaxU = geo::texelClampMax(wlog);
+    clampMaxV = geo::texelClampMax(hlog);
     if (wrapMaskU > storedW - 1) wrapMaskU = storedW - 1;
     if (wrapMaskV > storedH - 1) wrapMaskV = storedH - 1;
     clampMaxU = std::min(clampMaxU, storedW - 1);

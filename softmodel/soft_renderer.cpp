@@ -13,6 +13,7 @@
 #include "geometry/clip.h"
 #include "geometry/raster.h"
 #include "geometry/spline.h"
+#include "geometry/texture_size.h"
 #include "geometry/transform.h"
 #include "hle/vertex_decoder.h"
 #include "softmodel/pixel.h"
@@ -148,8 +149,8 @@ geo::RasterParams makeRasterParams(const GeState& st, bool through, bool texture
     rp.needW = rp.textured && levelMode == 2;
     rp.fog = !through && st.FGE_on();
     rp.through = through;
-    rp.texW0 = float(st.textureWidth(0));
-    rp.texH0 = float(st.textureHeight(0));
+    rp.texW0 = float(geo::texCoordWidth(st, 0));  // unclamped 2^n (geometry/texture_size.h)
+    rp.texH0 = float(geo::texCoordHeight(st, 0));
     return rp;
 }
 

@@ -13,6 +13,7 @@
 #include "tests/gl_fixture.h"
 #include "tests/near_clip_scene.h"
 #include "tests/reference_quirk_scenes.h"
+#include "tests/wide_texture_scene.h"
 
 namespace ge::gltest {
 namespace {
@@ -254,6 +255,31 @@ TEST(GlVsSoft, NearClippedFanFollowsTheReferenceVertexOrder) {
         EXPECT_EQ(rgb(g, kFanWedgeX, kFanWedgeY), wedge);
         EXPECT_EQ(rgb(s, kFanWedgeX, kFanWedgeY), wedge);
     }
+}
+
+// Textures past 512 texels (geometry/texture_size.h, tests/wide_texture_scene.h): the software
+// model and GL in exact and hardware mode all scale coordinates by the full 2^n and stop the
+// texel index at 511, through mode and transform mode alike (a PSP: texel 2 at pixel 0 of a
+// 1024-wide row over 256 pixels). GL used to scale transform-mode coordinates by 512, the
+// software model through-mode ones by 2^n/512 too much.
+TEST(GlVsSoft, TexturesPast512ReadThePspTexels) {
+    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
+        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
+        Memory mem;
+        gl::GlOptions opt;
+        opt.mode = mode;
+        std::string err;
+        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
+        if (!r) GTEST_SKIP() << "no GL context: " << err;
+        const std::vector<u8> vram = runListVram(mem, *r, testscene::wideTextureScene);
+        const std::vector<std::string> bad = testscene::wideTextureMismatches(vram.data());
+        EXPECT_TRUE(bad.empty()) << bad.size() << " pixels, first " << bad.front();
+    }
+    Frame s;
+    std::string err;
+    ASSERT_TRUE(renderWith(false, testscene::wideTextureScene, s, err));
+    const std::vector<std::string> bad = testscene::wideTextureMismatches(s.vram.data());
+    EXPECT_TRUE(bad.empty()) << "soft: " << bad.size() << " pixels, first " << bad.front();
 }
 
 // A needle-thin triangle (corners of 1.8 and 4.9 degrees) with a blend that reads the destination.

@@ -4,10 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 
+#include "geometry/texture_size.h"
+#include "hle/ge_engine.h"
+#include "hle/list_builder.h"
 #include "soft_pixel_fixture.h"
 #include "softmodel/sampler.h"
+#include "softmodel/soft_renderer.h"
 #include "softmodel/texture_cache.h"
+#include "tests/wide_texture_scene.h"
 
 using namespace ge;
 using namespace ge::soft;
@@ -107,6 +113,46 @@ TEST(SoftSampler, SizesAbove512SaturateAddressing) {
     EXPECT_EQ(sampleNearest(lv, 0.75f, 0.0f, false, false), texels[256]);  // u 768 → 256
     EXPECT_EQ(sampleNearest(lv, 0.75f, 0.0f, true, false), texels[511]);
     EXPECT_EQ(sampleNearest(lv, 0.25f, 0.0f, true, false), texels[256]);
+}
+
+// The size rule (geometry/texture_size.h): coordinates scale by the full 2^n, the texel index
+// stops at min(2^n, 512) − 1 or wraps with (2^n − 1) & 511. With the PSP's values for rows of
+// 1024 and 32768 texels drawn over 256 pixels (tests/conformance/textures_size.cpp): pixel 0
+// (s = 0.5/256) reads texel 2 and 64, pixel 127 texel 510.
+TEST(SoftSampler, SizesAbove512ScaleByTheFullSize) {
+    EXPECT_EQ(geo::texCoordSize(9), 512u);
+    EXPECT_EQ(geo::texCoordSize(10), 1024u);
+    EXPECT_EQ(geo::texCoordSize(15), 32768u);
+    EXPECT_EQ(geo::texelClampMax(3), 7);
+    EXPECT_EQ(geo::texelClampMax(10), 511);
+    EXPECT_EQ(geo::texelWrapMask(3), 7);
+    EXPECT_EQ(geo::texelWrapMask(15), 511);
+    std::vector<u32> texels(512);
+    std::iota(texels.begin(), texels.end(), 0u);
+    const TexLevel w1024 = levelOf(texels, 10, 0), w32768 = levelOf(texels, 15, 0);
+    EXPECT_EQ(sampleNearest(w1024, 0.5f / 256, 0.0f, true, true), 2u);
+    EXPECT_EQ(sampleNearest(w1024, 127.5f / 256, 0.0f, true, true), 510u);
+    EXPECT_EQ(sampleNearest(w1024, 255.5f / 256, 0.0f, true, true), 511u);
+    EXPECT_EQ(sampleNearest(w32768, 0.5f / 256, 0.0f, true, true), 64u);
+}
+
+// End to end, through mode divides its texel coordinates by the same unclamped 2^n the sampler
+// multiplies by (geometry/transform.cpp), so both modes read the PSP's texels
+// (tests/wide_texture_scene.h: 1024 wide and high, clamp and repeat).
+TEST(SoftSampler, SizesAbove512ReadTheSameTexelsInBothModes) {
+    Memory mem;
+    SoftOptions o;
+    o.threads = 1;
+    auto r = createSoftRenderer(mem, o);
+    GeEngine eng(mem, r.get());
+    ListBuilder b(&mem);
+    testscene::wideTextureScene(b);
+    b.finish();
+    eng.startList(b.placeList(), 0);
+    eng.run();
+    r->flushToMemory();
+    const std::vector<std::string> bad = testscene::wideTextureMismatches(mem.vram());
+    EXPECT_TRUE(bad.empty()) << bad.size() << " pixels, first " << bad.front();
 }
 
 TEST(SoftSampler, EndToEndNearestAndBilinear) {

@@ -15,6 +15,7 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "geometry/texture_size.h"
 #include "hle/pixel_format.h"
 #include "hle/texture_decoder.h"
 #include "shadergen/keys_from_state.h"
@@ -419,8 +420,14 @@ private:
                 return false;
             }
             s.texture = e->tex;
-            for (int l = 0; l < 8; ++l)
-                for (int i = 0; i < 4; ++i) s.u.texLevels[l][i] = e->placement[std::min(l, e->levels - 1)][i];
+            // (atlas y, 2^n w, 2^n h, 0): the shader scales coordinates by the unclamped 2^n and
+            // addresses the min(2^n, 512) texels placed in the atlas (geometry/texture_size.h).
+            for (int l = 0; l < 8; ++l) {
+                const int pl = std::min(l, e->levels - 1);
+                for (int i = 0; i < 4; ++i) s.u.texLevels[l][i] = e->placement[pl][i];
+                s.u.texLevels[l][1] = int(geo::texCoordWidth(st, pl));
+                s.u.texLevels[l][2] = int(geo::texCoordHeight(st, pl));
+            }
             s.u.texMaxLevel = e->levels - 1;
         }
         return true;
@@ -541,10 +548,9 @@ private:
         s.fs.texFormat = u8(tf);
         shadergen::canonicalize(s.fs);
         s.texture = t->tex;
-        const TextureLevelInfo info = textureLevelInfo(st, 0);
         s.u.texLevels[0][0] = int(px / t->stride) * scale_;
-        s.u.texLevels[0][1] = int(std::max<u32>(info.width, 1));
-        s.u.texLevels[0][2] = int(std::max<u32>(info.height, 1));
+        s.u.texLevels[0][1] = int(geo::texCoordWidth(st, 0));  // unclamped 2^n (geometry/texture_size.h)
+        s.u.texLevels[0][2] = int(geo::texCoordHeight(st, 0));
         s.u.texLevels[0][3] = int(px % t->stride) * scale_;
         s.u.texMaxLevel = 0;
         s.u.texScale = scale_;

@@ -25,7 +25,7 @@ namespace ge::gl {
 struct TextureEntry {
     GLuint tex = 0;
     int levels = 1;
-    int placement[8][4] = {};  // atlas y offset, width, height, 0 (the shader's u_texLevels)
+    int placement[8][4] = {};  // atlas y offset, stored width, height (≤ 512), 0 (u_texLevels takes the y)
     u64 hashes[8] = {};
     u32 rangeBegin = 0, rangeEnd = 0;  // normalised source bytes of all levels (for sync)
     u64 checkedGen = ~u64(0);

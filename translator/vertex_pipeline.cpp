@@ -8,6 +8,7 @@
 #include "geometry/assembly.h"
 #include "geometry/clip.h"
 #include "geometry/spline.h"
+#include "geometry/texture_size.h"
 
 namespace ge::gl {
 
@@ -118,8 +119,8 @@ geo::RasterParams VertexPipeline::rasterParams() const {
     rp.needW = vs_.texture && st_->TLEVEL_mode() == 2;
     rp.fog = vs_.fog;
     rp.through = ts_.through;
-    rp.texW0 = float(st_->textureWidth(0));
-    rp.texH0 = float(st_->textureHeight(0));
+    rp.texW0 = float(geo::texCoordWidth(*st_, 0));  // unclamped 2^n (geometry/texture_size.h)
+    rp.texH0 = float(geo::texCoordHeight(*st_, 0));
     return rp;
 }
 
