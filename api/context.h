@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "debugger/debugger.h"
 #include "hle/ge_engine.h"
 #include "hle/memory.h"
 #include "hle/sce_ge.h"
@@ -83,6 +84,8 @@ struct ge2gl_context {
     std::vector<std::pair<ge::u32, ge::u32>> pendingWrites;
     // The last ge2gl_state_save's blob (valid until the next save or destroy).
     std::vector<ge::u8> stateBlob;
+    // ge2gl_debug_*: breakpoints observing the engine, made at the first debugger call.
+    std::unique_ptr<ge::debug::Breakpoints> debugger;
 
     // Peek snapshot (snapMu only).
     std::mutex snapMu;
@@ -152,6 +155,12 @@ bool reentrant(const ge2gl_context* h);
 // `stopAfter`: a list ID the inline run stops after (-1: none), so a wait for one list does not
 // run the next.
 bool waitUntil(ge2gl_context* h, Call& c, const std::function<bool()>& done, std::string& why, s32 stopAfter = -1);
+// ge2gl_run, ge2gl_run_until, ge2gl_debug_step: at most max_commands, stopping between commands
+// once the GE time reaches `tick`; fills `out` (may be null).
+ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2gl_run_info* out);
+// Save states, debugger pokes and read-outs are refused from inside a callback (a command is half
+// done there) and while the GE executes a command.
+bool refuseMidRunCommand(const ge2gl_context* h);
 // Runs the GE on this thread for up to `budget` commands (non-worker mode).
 ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter = -1);
 

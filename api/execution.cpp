@@ -220,6 +220,8 @@ bool reentrant(const ge2gl_context* h) {
     return h->deliverThread == me || (h->workerMode && me == h->workerId);
 }
 
+bool refuseMidRunCommand(const ge2gl_context* h) { return reentrant(h) || h->sce->inRun(); }
+
 ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter) {
     h->runLock = &c.lock();
     h->runGl = c.glEntered();
@@ -232,6 +234,7 @@ ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter) {
         used += r.commands;
         announceDirty(h);
         refreshSnapshot(h);
+        if (h->debugger && r.state == ge::SceRunState::Idle) h->debugger->frameEnded();
         if (r.state != ge::SceRunState::Budget || r.commands == 0) break;
         if (stopAfter >= 0 && before != ge::SceListState::Completed && h->sce->listState(stopAfter) == ge::SceListState::Completed)
             break;
@@ -344,10 +347,8 @@ void ge2gl_context::workerLoop() {
     idle.notify_all();
 }
 
-namespace {
+namespace ge2gl_impl {
 
-// ge2gl_run and ge2gl_run_until: at most max_commands, stopping between commands once the GE
-// time reaches `tick`.
 ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2gl_run_info* out) {
     Call c(h);
     if (h->workerMode) return c.error(GE2GL_ERR_BAD_STATE, "the worker thread runs the GE; use the sync functions to wait");
@@ -367,6 +368,7 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
         case ge::SceRunState::Stalled: out->ge_state = GE2GL_GE_STALLED; break;
         case ge::SceRunState::Paused: out->ge_state = GE2GL_GE_PAUSED; break;
         case ge::SceRunState::Hung: out->ge_state = GE2GL_GE_HUNG; break;
+        case ge::SceRunState::Break: out->ge_state = GE2GL_GE_BREAK; break;
         default: out->ge_state = GE2GL_GE_READY; break;
         }
         if (h->held) out->ge_state = GE2GL_GE_INTERRUPT;
@@ -378,7 +380,7 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
     return GE2GL_OK;
 }
 
-}  // namespace
+}  // namespace ge2gl_impl
 
 extern "C" {
 

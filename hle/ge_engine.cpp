@@ -128,6 +128,7 @@ RunStatus GeEngine::run(u64 maxCommands) {
     default: break;
     }
     stopRequested_ = false;
+    broke_ = false;
     u64 n = 0;
     for (;;) {
         if (list_.stall && list_.pc == list_.stall) {
@@ -159,6 +160,13 @@ RunStatus GeEngine::run(u64 maxCommands) {
             break;
         }
         u32 word = readLE32(p);
+        if (!observers_.empty() && !std::all_of(observers_.begin(), observers_.end(), [&](CommandObserver* o) {
+                return o->beforeCommand(list_.pc, word);
+            })) {
+            broke_ = true;
+            status_ = RunStatus::Budget;
+            break;
+        }
         list_.pc += 4;
         ++n;
         execute(word);

@@ -68,6 +68,17 @@ struct ListRegs {
     u32 lastWord = 0;
 };
 
+// Sees every command before the GE executes it (a debugger's breakpoints, a frame recorder).
+// Callbacks run on the caller's thread from inside run(), between commands.
+class CommandObserver {
+public:
+    virtual ~CommandObserver() = default;
+    // `word` was read at `pc` and is about to execute. Returning false stops the run before it
+    // (run() returns RunStatus::Budget with broke() set; the pc still points at the word, and the
+    // next run() asks again).
+    virtual bool beforeCommand(u32 pc, u32 word) = 0;
+};
+
 struct GeStats {
     u64 commands = 0, prims = 0, patches = 0, immediates = 0, vertices = 0, bboxes = 0;
     u64 transfers = 0, clutLoads = 0, signals = 0, finishes = 0, unknownCommands = 0;
@@ -86,6 +97,11 @@ public:
     void setRenderer(Renderer* r);
     Renderer* renderer() const { return renderer_; }
     void setListener(GeListener* l) { listener_ = l; }
+    // Observers are called in the order added; a null-safe remove.
+    void addObserver(CommandObserver* o) { observers_.push_back(o); }
+    void removeObserver(CommandObserver* o) { std::erase(observers_, o); }
+    // The last run() stopped because an observer refused a command.
+    bool broke() const { return broke_; }
 
     GeState& state() { return state_; }
     const GeState& state() const { return state_; }
@@ -173,6 +189,8 @@ private:
     Renderer* renderer_ = nullptr;
     NullRenderer nullRenderer_;
     GeListener* listener_ = nullptr;
+    std::vector<CommandObserver*> observers_;
+    bool broke_ = false;
     GeState state_;
     ListRegs list_;
     GeStats stats_;

@@ -33,6 +33,7 @@ const char* sceRunStateName(SceRunState s) {
     case SceRunState::Paused: return "paused";
     case SceRunState::Hung: return "hung";
     case SceRunState::Reentrant: return "reentrant";
+    case SceRunState::Break: return "break";
     }
     return "?";
 }
@@ -621,6 +622,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     }
     inRun_ = true;
     u64 used = 0;
+    bool broke = false;
     for (;;) {
         if (queue_.empty()) break;
         if (engine_.stats().cycles >= tickStop_) break;
@@ -642,6 +644,10 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
         // start, when this one completes below, is that list's).
         dl.cycles += engine_.stats().cycles - cyclesBefore;
         used += engine_.stats().commands - before;
+        if (engine_.broke()) {
+            broke = true;
+            break;
+        }
         if (s == RunStatus::Completed || s == RunStatus::Error) {
             // An error drops the list and the queue moves on (PPSSPP); the error callback has
             // already been delivered.
@@ -661,6 +667,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     inRun_ = false;
     SceRunResult r = peekRun();
     r.commands = used;
+    if (broke) r.state = SceRunState::Break;
     return r;
 }
 

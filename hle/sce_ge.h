@@ -96,6 +96,7 @@ enum class SceRunState : u8 {
     Paused,    // the current list is paused (break, signal pause, or head-enqueued awaiting continue)
     Hung,      // the current list hit an END without SIGNAL/FINISH: the GE stops (uOFW, §4.3)
     Reentrant, // run() was called from inside a callback
+    Break,     // a command observer stopped the GE before a command (GeEngine::broke)
 };
 const char* sceRunStateName(SceRunState s);
 
@@ -173,6 +174,8 @@ public:
     void requestYield();
     // Peek state of a list, or an error (for tests and the API's run info).
     SceListState listState(s32 id) const;
+    // The list the GE runs or will run next (the queue's front), -1 when none.
+    s32 currentListId() const { return queue_.empty() ? -1 : idOf(queue_.front()); }
     // GE time spent running list `id` so far (-1 when the ID names no list).
     s64 listCycles(s32 id) const;
     // run() stops between commands once the GE-time estimate reaches `cycles` (~0: no stop).

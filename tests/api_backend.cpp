@@ -151,6 +151,20 @@ TEST(ApiCpp, WrapperOwnsTheHandleAndForwardsCallbacks) {
     auto m = ctx.getMatrix(10);
     ASSERT_TRUE(m.ok());
     EXPECT_EQ(m.value.size(), 16u);
+    // API 1.3 wrappers: a save state round trip, the debugger's text and a step at an idle GE.
+    auto st = ctx.saveState();
+    ASSERT_TRUE(st.ok()) << st.message;
+    EXPECT_GT(st.value.size(), 32u);
+    EXPECT_TRUE(ctx.loadState(st.value).ok());
+    std::vector<uint8_t> corrupt = st.value;
+    corrupt[40] ^= 1;
+    EXPECT_EQ(ctx.loadState(corrupt).code, GE2GL_ERR_INVALID_ARGUMENT);
+    auto text = ctx.debugText(GE2GL_DEBUG_STATE);
+    ASSERT_TRUE(text.ok()) << text.message;
+    EXPECT_NE(text.value.find("0xca TEC      000005  rgb=#000005"), std::string::npos) << text.value;
+    auto stepped = ctx.debugStep(GE2GL_STEP_COMMAND);
+    ASSERT_TRUE(stepped.ok());
+    EXPECT_EQ(stepped.value.ge_state, GE2GL_GE_IDLE);
     ge2gl::Context moved = std::move(ctx);
     EXPECT_FALSE(static_cast<bool>(ctx));
     EXPECT_TRUE(static_cast<bool>(moved));

@@ -20,6 +20,7 @@
 #include "tools/lib/blame.h"
 #include "tools/lib/image.h"
 #include "tools/lib/render.h"
+#include "tools/lib/step.h"
 #include "tools/lib/batch.h"
 #include "tools/lib/draw_select.h"
 #include "tools/lib/difffuzz.h"
@@ -332,6 +333,19 @@ int main(int argc, char** argv) {
 
     std::vector<std::string> benchFiles;
     int repeat = 3;
+    tools::StepOptions stepOpt;
+    std::string stepFile;
+    auto* step = app.add_subcommand("step", "replay a dump to one command with the GE debugger and print the state there");
+    step->add_option("DUMP", stepFile)->required();
+    step->add_option("--break", stepOpt.breakAt,
+                     "where: draw:N (Nth PRIM/BEZIER/SPLINE), prim:N, command:N, op:NAME[:N], addr:ADDR[:N]; "
+                     "N counts from 1")
+        ->required();
+    step->add_option("--out-dir", stepOpt.outDir,
+                     "write color.png, depth.png, stencil.png (after the command), texture-L*.png and clut.png "
+                     "(before it)");
+    addBackendOpts(step);
+
     auto* bench = app.add_subcommand("bench", "time the replay of dumps (median of --repeat runs)");
     bench->add_option("DUMP", benchFiles)->required();
     bench->add_option("--repeat", repeat, "runs per dump")->check(CLI::Range(1, 1000));
@@ -452,6 +466,18 @@ int main(int argc, char** argv) {
     if (*report) {
         reportArgs.render = ropt;
         return tools::runReport(reportArgs);
+    }
+    if (*step) {
+        stepOpt.render = ropt;
+        tools::StepResult res;
+        std::string err;
+        if (!tools::stepDump(stepFile, stepOpt, res, err)) return fail(err);
+        std::fputs(res.report.c_str(), stdout);
+        if (!res.hit) {
+            std::fprintf(stderr, "ge2gl: the frame ended before --break %s\n", stepOpt.breakAt.c_str());
+            return 1;
+        }
+        return 0;
     }
     if (*bench) return cmdBench(benchFiles, ropt, repeat, warm);
     if (*blame) return tools::runBlameCommand(blameFile, ropt, blameOpt);

@@ -125,6 +125,8 @@ typedef int32_t ge2gl_status;
                               ge2gl_break(h, 1, NULL)) */
 #define GE2GL_GE_INTERRUPT 5 /* config.hold_interrupts: a signal or finish callback was delivered
                                 and the GE waits for ge2gl_interrupt_ack() */
+#define GE2GL_GE_BREAK 6     /* API 1.3: a debugger breakpoint stopped the GE before the command at
+                                info.pc; the next run executes it */
 
 /* Frame-buffer pixel formats (CMD_FPF codes). */
 #define GE2GL_FORMAT_565 0
@@ -326,6 +328,65 @@ GE2GL_API ge2gl_status ge2gl_frame_texture(ge2gl_context* h, uint32_t addr, uint
 GE2GL_API ge2gl_status ge2gl_frame_texture_sized(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format,
                                                  uint32_t width, uint32_t height, uint32_t out_width,
                                                  uint32_t out_height, uint32_t* out_texture);
+
+/* ---- Debugger (API 1.3; docs/debugger.md) ----------------------------------------------- */
+/* One-shot stops, OR'd together; the first that applies stops ge2gl_run / ge2gl_run_until
+   (GE2GL_GE_BREAK) and clears them all. Sync waits and the worker thread run through stops. */
+#define GE2GL_BREAK_NEXT_COMMAND 1u /* before the next command */
+#define GE2GL_BREAK_NEXT_DRAW 2u    /* before the next PRIM, BEZIER or SPLINE */
+#define GE2GL_BREAK_NEXT_PRIM 4u    /* before the next PRIM */
+#define GE2GL_BREAK_NEXT_LIST 8u    /* before the first command of another list */
+#define GE2GL_BREAK_NEXT_FRAME 16u  /* before the first command after the GE ran out of lists */
+GE2GL_API ge2gl_status ge2gl_debug_break_next(ge2gl_context* h, uint32_t flags);
+/* Lasting breakpoints: before every command with opcode op (0-255), before the command at addr. */
+GE2GL_API ge2gl_status ge2gl_debug_break_opcode(ge2gl_context* h, uint32_t op, int32_t on);
+GE2GL_API ge2gl_status ge2gl_debug_break_address(ge2gl_context* h, uint32_t addr, int32_t on);
+GE2GL_API ge2gl_status ge2gl_debug_clear_breaks(ge2gl_context* h);
+/* Executes the command (GE2GL_STEP_COMMAND) or runs through the next draw (GE2GL_STEP_DRAW) and
+   stops before the command after it: ge2gl_run with one stop set. */
+#define GE2GL_STEP_COMMAND 0
+#define GE2GL_STEP_DRAW 1
+GE2GL_API ge2gl_status ge2gl_debug_step(ge2gl_context* h, int32_t what, ge2gl_run_info* out);
+/* Text: GE2GL_DEBUG_STATE every register with its fields named and the matrices; GE2GL_DEBUG_LIST
+   the running list's pc, stall, CALL/SIGNAL stacks, BASE, OFFSET; GE2GL_DEBUG_DISASM 16 commands
+   from 4 before the pc; GE2GL_DEBUG_REASON why the GE last stopped. *needed (may be NULL) gets the
+   size with the terminating NUL; a buffer too small gives GE2GL_ERR_INVALID_ARGUMENT. */
+#define GE2GL_DEBUG_STATE 0
+#define GE2GL_DEBUG_LIST 1
+#define GE2GL_DEBUG_DISASM 2
+#define GE2GL_DEBUG_REASON 3
+GE2GL_API ge2gl_status ge2gl_debug_text(ge2gl_context* h, int32_t what, char* buf, size_t size, size_t* needed);
+/* Sets a register as if the list had sent the word (opcode in bits 31..24), without its side
+   effects (no draw, jump or transfer is started: those opcodes are refused). */
+GE2GL_API ge2gl_status ge2gl_debug_set_register(ge2gl_context* h, uint32_t word);
+/* The buffers the GE draws into now (FBP/FBW/FPF, ZBP/ZBW): GE2GL_DEBUG_COLOR as RGBA8888 (4 bytes
+   a pixel), GE2GL_DEBUG_DEPTH as uint16_t values, GE2GL_DEBUG_STENCIL one byte a pixel (the colour
+   buffer's alpha bits). Rows top to bottom; what was drawn so far is written back first. */
+#define GE2GL_DEBUG_COLOR 0
+#define GE2GL_DEBUG_DEPTH 1
+#define GE2GL_DEBUG_STENCIL 2
+GE2GL_API ge2gl_status ge2gl_debug_read_buffer(ge2gl_context* h, int32_t which, uint32_t width, uint32_t height,
+                                               void* out, size_t size);
+/* Level 0-7 of the bound texture decoded (CLUT applied) to RGBA8888. *out_w / *out_h get its
+   size; out may be NULL to ask only that. */
+GE2GL_API ge2gl_status ge2gl_debug_read_texture(ge2gl_context* h, int32_t level, uint32_t* out_w, uint32_t* out_h,
+                                                uint8_t* out, size_t size);
+/* The palette RAM decoded in the CLUT format to RGBA8888 words (R in bits 7..0): 256 entries for
+   a 32-bit CLUT, 512 for 16-bit. */
+GE2GL_API ge2gl_status ge2gl_debug_read_clut(ge2gl_context* h, uint32_t* out, uint32_t capacity, uint32_t* out_count);
+/* The vertices of the PRIM at the pc (stopped before it), in draw order: as decoded (model space,
+   or drawing coordinates in through mode) and after transform, as the rasteriser gets them. */
+typedef struct ge2gl_debug_vertex {
+    float pos[3], uv[2], normal[3];
+    uint8_t color[4];
+    float screen_x, screen_y; /* drawing coordinates in pixels (1/16 precision) */
+    int32_t screen_z;         /* 0-65535 */
+    float s, t, q;            /* texture coordinates, units of the level-0 size */
+    uint8_t lit_color[4];     /* after lighting */
+    int32_t outside;          /* breaks the screen range rule: its primitive is dropped */
+} ge2gl_debug_vertex;
+GE2GL_API ge2gl_status ge2gl_debug_vertices(ge2gl_context* h, ge2gl_debug_vertex* out, uint32_t capacity,
+                                            uint32_t* out_count);
 
 /* ---- Save states (API 1.3; format: docs/savestate.md) ------------------------------------ */
 /* Include guest RAM, VRAM and the scratchpad (zstd-compressed) in the state. Without it the host

@@ -150,6 +150,36 @@ public:
         return call<uint32_t>([&](uint32_t* v) { return ge2gl_edram_set_translation(h_, value, v); });
     }
 
+    // ---- debugger (docs/debugger.md) ----
+    Status debugBreakNext(uint32_t flags) { return {ge2gl_debug_break_next(h_, flags)}; }
+    Status debugBreakOpcode(uint32_t op, bool on = true) { return {ge2gl_debug_break_opcode(h_, op, on ? 1 : 0)}; }
+    Status debugBreakAddress(uint32_t addr, bool on = true) { return {ge2gl_debug_break_address(h_, addr, on ? 1 : 0)}; }
+    Status debugClearBreaks() { return {ge2gl_debug_clear_breaks(h_)}; }
+    Result<ge2gl_run_info> debugStep(int32_t what) {
+        return call<ge2gl_run_info>([&](ge2gl_run_info* v) { return ge2gl_debug_step(h_, what, v); });
+    }
+    // GE2GL_DEBUG_STATE / LIST / DISASM / REASON.
+    Result<std::string> debugText(int32_t what) {
+        return call<std::string>([&](std::string* v) {
+            size_t need = 0;
+            ge2gl_status s = ge2gl_debug_text(h_, what, nullptr, 0, &need);
+            if (s != GE2GL_OK) return s;
+            std::vector<char> buf(need);
+            s = ge2gl_debug_text(h_, what, buf.data(), buf.size(), nullptr);
+            if (s == GE2GL_OK) v->assign(buf.data());
+            return s;
+        });
+    }
+    Result<std::vector<ge2gl_debug_vertex>> debugVertices() {
+        return call<std::vector<ge2gl_debug_vertex>>([&](std::vector<ge2gl_debug_vertex>* v) {
+            uint32_t n = 0;
+            ge2gl_status s = ge2gl_debug_vertices(h_, nullptr, 0, &n);
+            if (s != GE2GL_OK) return s;
+            v->resize(n);
+            return ge2gl_debug_vertices(h_, v->data(), n, &n);
+        });
+    }
+
     // ---- save states (docs/savestate.md) ----
     // The blob, copied out of ge2gl's buffer. flags: GE2GL_STATE_WITH_MEMORY or 0.
     Result<std::vector<uint8_t>> saveState(uint32_t flags = 0) {
