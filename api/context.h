@@ -101,6 +101,7 @@ struct ge2gl_context {
     std::condition_variable_any idle;  // the worker made progress or stopped
     ge::u64 workerCommands = 0;
 
+    std::shared_ptr<struct ge2gl_recording> recording;  // ge2gl_record_begin/end (api/record.cpp)
     bool isGl() const { return backend == GE2GL_BACKEND_GL_CURRENT || backend == GE2GL_BACKEND_GL_HEADLESS; }
     void workerLoop();
 };

@@ -405,6 +405,26 @@ GE2GL_API ge2gl_status ge2gl_state_save(ge2gl_context* h, uint32_t flags, const 
    or calls ge2gl_mem_written after it. */
 GE2GL_API ge2gl_status ge2gl_state_load(ge2gl_context* h, const void* data, size_t size);
 
+/* ---- Frame-dump recording (API 1.3; docs/recording.md) --------------------------------- */
+/* Records what the GE executes on h between ge2gl_record_begin and ge2gl_record_end as a PPSSPP
+   frame dump (.ppdmp version 6, as PPSSPP's GE recorder writes it): the GE context at the start,
+   every state command, the vertices, indices, texture levels, CLUTs and transfer sources the
+   draws read, and the host's writes into VRAM (ge2gl_mem_write, ge2gl_mem_written) as
+   MEMCPY/MEMSET records. PPSSPP's player and `ge2gl render` replay the file to the same picture.
+   Call between GE commands (not from a callback: GE2GL_ERR_REENTRANT).
+   begin: GE2GL_ERR_INVALID_ARGUMENT for a NULL/empty path or one that cannot be written (the
+   message carries the system's error text; the file is created at end); GE2GL_ERR_BAD_STATE when
+   already recording. end: writes the file; GE2GL_ERR_BAD_STATE when not recording,
+   GE2GL_ERR_INVALID_ARGUMENT with the system's error text when the file cannot be written (the
+   recording is dropped either way). After a successful end, ge2gl_last_message(h) lists what the
+   dump could not express ("" when nothing). Destroying h while recording drops the recording. */
+GE2GL_API ge2gl_status ge2gl_record_begin(ge2gl_context* h, const char* path);
+/* The frame buffer the host displays (sceDisplaySetFrameBuf) while recording: a DISPLAY record.
+   The dump ends with the last one given (or, without one, with the GE's current frame buffer).
+   format: GE2GL_FORMAT_*. GE2GL_ERR_BAD_STATE when not recording. */
+GE2GL_API ge2gl_status ge2gl_record_display(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format);
+GE2GL_API ge2gl_status ge2gl_record_end(ge2gl_context* h);
+
 /* ---- Dump replay (integration testing) -------------------------------------------------- */
 /* The frame buffer a dump displays (its last DISPLAY record, or the last drawing target). */
 typedef struct ge2gl_display {

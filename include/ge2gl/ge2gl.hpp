@@ -201,6 +201,12 @@ public:
     Result<ge2gl_display> replayDump(const char* path) {
         return call<ge2gl_display>([&](ge2gl_display* v) { return ge2gl_replay_dump(h_, path, v); });
     }
+    // Frame-dump recording (API 1.3; ge2gl.h "Frame-dump recording").
+    Status recordBegin(const char* path) { return {ge2gl_record_begin(h_, path)}; }
+    Status recordDisplay(uint32_t addr, uint32_t stride, int32_t format) {
+        return {ge2gl_record_display(h_, addr, stride, format)};
+    }
+    Status recordEnd() { return {ge2gl_record_end(h_)}; }
     Result<std::vector<uint8_t>> readFrame(uint32_t addr, uint32_t stride, int32_t format, uint32_t width, uint32_t height) {
         return call<std::vector<uint8_t>>([&](std::vector<uint8_t>* v) {
             v->assign(size_t(width) * height * 4, 0);
