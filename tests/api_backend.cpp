@@ -165,6 +165,15 @@ TEST(ApiCpp, WrapperOwnsTheHandleAndForwardsCallbacks) {
     auto stepped = ctx.debugStep(GE2GL_STEP_COMMAND);
     ASSERT_TRUE(stepped.ok());
     EXPECT_EQ(stepped.value.ge_state, GE2GL_GE_IDLE);
+    auto pal = ctx.debugReadClut();
+    ASSERT_TRUE(pal.ok()) << pal.message;
+    EXPECT_EQ(pal.value.size(), 512u);  // CLUT format 565 after reset: 16-bit entries
+    EXPECT_TRUE(ctx.debugSetRegister(0xC5000003).ok());  // CLUT 8888
+    EXPECT_EQ(ctx.debugReadClut().value.size(), 256u);
+    EXPECT_EQ(ctx.debugSetRegister(0x04000000).code, GE2GL_ERR_INVALID_ARGUMENT);
+    auto color = ctx.debugReadBuffer(GE2GL_DEBUG_COLOR, 8, 8);
+    ASSERT_TRUE(color.ok()) << color.message;
+    EXPECT_EQ(color.value.size(), 8u * 8 * 4);
     ge2gl::Context moved = std::move(ctx);
     EXPECT_FALSE(static_cast<bool>(ctx));
     EXPECT_TRUE(static_cast<bool>(moved));

@@ -43,10 +43,15 @@ inline ge2gl_context* createHandle(int backend) {
 // `every` executed commands.
 class SwitchingTarget : public dump::ReplayTarget {
 public:
-    SwitchingTarget(int firstBackend, u64 every) : backend_(firstBackend), every_(every) { h_ = createHandle(backend_); }
+    // onlyAt 0: switch at every save point (a chain); k: only at the kth, the rest of the frame on
+    // that one instance.
+    SwitchingTarget(int firstBackend, u64 every, int onlyAt = 0) : backend_(firstBackend), every_(every), onlyAt_(onlyAt) {
+        h_ = createHandle(backend_);
+    }
     ~SwitchingTarget() override { ge2gl_destroy(h_); }
     ge2gl_context* handle() const { return h_; }
     int switches() const { return switches_; }
+    int savePoints() const { return points_; }
     const std::string& failure() const { return failure_; }
 
     u32 ramSize() const override { return probe_.ramSize(); }
@@ -75,7 +80,11 @@ public:
             used += info.commands;
             sinceSwitch_ += info.commands;
             // Mid-list, at a stall, or idle between lists: wherever the count lands.
-            if (sinceSwitch_ >= every_) switchBackend();
+            if (sinceSwitch_ >= every_) {
+                sinceSwitch_ = 0;
+                ++points_;
+                if (onlyAt_ == 0 || points_ == onlyAt_) switchBackend();
+            }
             if (info.ge_state != GE2GL_GE_READY || used >= budget || !failure_.empty()) break;
         }
         switch (info.ge_state) {
@@ -138,7 +147,8 @@ private:
     ge2gl_context* h_ = nullptr;
     int backend_;
     u64 every_, sinceSwitch_ = 0;
-    int switches_ = 0;
+    int onlyAt_;
+    int switches_ = 0, points_ = 0;
     int32_t id_ = -1;
     std::string failure_;
 };
@@ -149,9 +159,30 @@ inline std::vector<u8> readDisplayed(ge2gl_context* h, const ge2gl_display& d) {
     return rgba;
 }
 
+// Replays `path` through a SwitchingTarget and returns the pixels of the displayed frame that
+// differ from `want` (~0 on a failure, reported with ADD_FAILURE).
+inline size_t replaySwitching(const fs::path& path, const dump::Dump& d, const ge2gl_display& disp,
+                              const std::vector<u8>& want, int firstBackend, int onlyAt, int* points = nullptr) {
+    SwitchingTarget target(firstBackend, 100, onlyAt);
+    if (!target.handle()) return ADD_FAILURE() << "no handle", ~size_t(0);
+    dump::ReplayResult res;
+    std::string err;
+    if (!dump::replayDump(d, target, {}, res, err)) return ADD_FAILURE() << err, ~size_t(0);
+    if (!target.failure().empty()) return ADD_FAILURE() << target.failure(), ~size_t(0);
+    if (points) *points = target.savePoints();
+    const std::vector<u8> got = readDisplayed(target.handle(), disp);
+    if (got.size() != want.size()) return ADD_FAILURE() << path << ": no frame", ~size_t(0);
+    size_t differing = 0;
+    for (size_t i = 0; i < got.size(); i += 4) differing += std::memcmp(&got[i], &want[i], 3) != 0;
+    return differing;
+}
+
+// Saves every 100 commands. Chain: each state loads into a fresh instance of the other backend,
+// which goes on to the next save point. Then, for every save point k, a replay that switches only
+// there: the state loaded into a fresh instance of the other backend finishes the frame itself.
+// Both give the uninterrupted soft frame exactly.
 inline void checkDump(const fs::path& path, int firstBackend) {
     SCOPED_TRACE(path.string());
-    // The uninterrupted frame, software backend.
     ge2gl_context* ref = createHandle(GE2GL_BACKEND_SOFT);
     ASSERT_NE(ref, nullptr);
     ge2gl_display disp{};
@@ -163,18 +194,12 @@ inline void checkDump(const fs::path& path, int firstBackend) {
     dump::Dump d;
     std::string err;
     ASSERT_TRUE(dump::loadDump(path.string(), d, err)) << err;
-    SwitchingTarget target(firstBackend, 100);
-    ASSERT_NE(target.handle(), nullptr);
-    dump::ReplayResult res;
-    ASSERT_TRUE(dump::replayDump(d, target, {}, res, err)) << err;
-    ASSERT_EQ(target.failure(), "");
-    const std::vector<u8> got = readDisplayed(target.handle(), disp);
-    ASSERT_EQ(got.size(), want.size());
-    size_t differing = 0;
-    for (size_t i = 0; i < got.size(); i += 4) differing += std::memcmp(&got[i], &want[i], 3) != 0;
-    EXPECT_EQ(differing, 0u) << "after " << target.switches() << " save/load switches";
-    EXPECT_GT(target.switches(), 0);
-    std::cout << path.filename().string() << ": " << target.switches() << " switches\n";
+    int points = 0;
+    EXPECT_EQ(replaySwitching(path, d, disp, want, firstBackend, 0, &points), 0u) << "chain of " << points << " switches";
+    ASSERT_GT(points, 0);
+    for (int k = 1; k <= points; ++k)
+        EXPECT_EQ(replaySwitching(path, d, disp, want, firstBackend, k), 0u) << "switched only at save point " << k;
+    std::cout << path.filename().string() << ": " << points << " save points\n";
 }
 
 }  // namespace savestate_test

@@ -170,6 +170,33 @@ public:
             return s;
         });
     }
+    Status debugSetRegister(uint32_t word) { return {ge2gl_debug_set_register(h_, word)}; }
+    // GE2GL_DEBUG_COLOR (4 bytes a pixel), DEPTH (2), STENCIL (1).
+    Result<std::vector<uint8_t>> debugReadBuffer(int32_t which, uint32_t width, uint32_t height) {
+        return call<std::vector<uint8_t>>([&](std::vector<uint8_t>* v) {
+            const size_t bpp = which == GE2GL_DEBUG_COLOR ? 4 : which == GE2GL_DEBUG_DEPTH ? 2 : 1;
+            v->assign(size_t(width) * height * bpp, 0);
+            return ge2gl_debug_read_buffer(h_, which, width, height, v->data(), v->size());
+        });
+    }
+    // RGBA8888 texels of a level; width and height through the out-parameters.
+    Result<std::vector<uint8_t>> debugReadTexture(int32_t level, uint32_t& width, uint32_t& height) {
+        return call<std::vector<uint8_t>>([&](std::vector<uint8_t>* v) {
+            ge2gl_status s = ge2gl_debug_read_texture(h_, level, &width, &height, nullptr, 0);
+            if (s != GE2GL_OK) return s;
+            v->assign(size_t(width) * height * 4, 0);
+            return ge2gl_debug_read_texture(h_, level, &width, &height, v->data(), v->size());
+        });
+    }
+    Result<std::vector<uint32_t>> debugReadClut() {
+        return call<std::vector<uint32_t>>([&](std::vector<uint32_t>* v) {
+            v->assign(512, 0);
+            uint32_t n = 0;
+            ge2gl_status s = ge2gl_debug_read_clut(h_, v->data(), uint32_t(v->size()), &n);
+            v->resize(s == GE2GL_OK ? n : 0);
+            return s;
+        });
+    }
     Result<std::vector<ge2gl_debug_vertex>> debugVertices() {
         return call<std::vector<ge2gl_debug_vertex>>([&](std::vector<ge2gl_debug_vertex>* v) {
             uint32_t n = 0;
