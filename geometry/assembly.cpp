@@ -95,6 +95,14 @@ void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std:
                        std::vector<u32>& seq) {
     const bool through = st.isThrough();
     const bool projective = !through && st.TMAP_mode() == 1;
+    // The secondary colour (I2) is added only with separate specular (LMODE 1) in transform mode;
+    // otherwise the vertices have none. Hardware (pspautotests gpu/primitives/immediate, I2 =
+    // 0x7F7F7F): a flat fan of (0, 127, 255) shows 0x7FFEFF with LMODE 1 in transform mode, 0x007FFF
+    // with LMODE 1 in through mode, and every primitive drawn with LMODE 0 (points, lines, strips,
+    // the Gouraud fan, the fogged sprite, the textured fans) shows its primary colour alone.
+    // Lighting (LTE) is off there: the condition does not read it. The reference renderer agrees
+    // (GPU/Software/TransformUnit.cpp: color1 = isUsingSecondaryColor() && !isModeThrough() ? I2 : 0).
+    const bool secondary = !through && st.LMODE_separate();
     // Through mode's texel coordinates over the unclamped 2^n (texture_size.h), as in transform.cpp.
     const float invW = 1.0f / float(texCoordWidth(st, 0)), invH = 1.0f / float(texCoordHeight(st, 0));
     auto to16 = [](float v) {
@@ -119,7 +127,7 @@ void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std:
         sv.w = 1.0f;
         sv.fog = float(iv.fog) / 255.0f;
         std::memcpy(sv.color, iv.color, 4);
-        std::memcpy(sv.secondary, iv.secondary, 3);
+        if (secondary) std::memcpy(sv.secondary, iv.secondary, 3);
         seq.push_back(u32(i));
     }
 }

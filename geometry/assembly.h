@@ -39,7 +39,8 @@ bool fanQuadAsRect(const RectDetect& rd, const ClipVertex* const q[4], int& tl, 
 // Immediate-mode vertices (CMD_X2 … CMD_AP2) as clip vertices, already in drawing coordinates
 // (no transform, lighting or clipping): positions to 1/16 pixel (kept within ±65536 pixels),
 // through-mode texels divided by the level-0 size (§8.10), Q only with texture projection, the
-// fog byte as a factor (fogToByte gives the byte back). `out` is resized to the vertices and
+// fog byte as a factor (fogToByte gives the byte back), the secondary colour only with LMODE 1 in
+// transform mode (else none; hardware values in assembly.cpp). `out` is resized to the vertices and
 // `seq` receives their draw order.
 void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std::vector<ClipVertex>& out,
                        std::vector<u32>& seq);

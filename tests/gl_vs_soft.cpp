@@ -320,5 +320,65 @@ TEST(GlVsSoft, NeedleTriangleIsBlendedOncePerPixel) {
     EXPECT_EQ(differing, 0u);
 }
 
+// Immediate vertices' secondary colour (I2) is added only with separate specular (LMODE 1) in
+// transform mode (geometry/assembly.cpp immediateVertices; a PSP, pspautotests
+// gpu/primitives/immediate: (0, 127, 255) + I2 0x7F7F7F shows 0x7FFEFF with LMODE 1 in transform
+// mode and 0x007FFF in through mode). Four 8x8 immediate sprites of RGB (0x10, 0x20, 0x30) with
+// I2 = 0x7F7F7F: transform mode with LMODE 0 and 1, through mode with LMODE 0 and 1. The software
+// model and GL in exact and hardware mode.
+void immediateSecondaryScene(ListBuilder& b) {
+    frameSetup(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    auto sprite = [&](int x, int y, bool through, bool lmode1) {
+        b.setVertexType(through ? vt::THROUGH : 0u);
+        b.lightMode(lmode1);
+        // X2/Y2: drawing position · 16 plus OFFSETX/Y (transform mode) or 0x8000 (through mode).
+        const u32 bx = through ? 0x8000 : (2048 - 32) << 4, by = through ? 0x8000 : (2048 - 32) << 4;
+        for (int k = 0; k < 2; ++k) {
+            b.cmd(GE_CMD_X2, bx + u32((x + 8 * k) << 4));
+            b.cmd(GE_CMD_Y2, by + u32((y + 8 * k) << 4));
+            b.cmd(GE_CMD_Z2, 0);
+            b.cmd(GE_CMD_RGB2, 0x302010);
+            b.cmd(GE_CMD_F2, 0xFF);
+            b.cmd(GE_CMD_I2, 0x7F7F7F);
+            b.cmd(GE_CMD_AP2, 0xFF | u32(k ? GE_PRIM_KEEP_PREVIOUS : GE_PRIM_RECTANGLES) << 8);
+        }
+        b.lightMode(false);  // any other command ends the immediate primitive
+    };
+    sprite(0, 0, false, false);
+    sprite(10, 0, false, true);
+    sprite(20, 0, true, false);
+    sprite(30, 0, true, true);
+}
+
+TEST(GlVsSoft, ImmediateSecondaryColourOnlyWithSeparateSpecularInTransformMode) {
+    auto check = [](const std::vector<u8>& vram) {
+        auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 64 + size_t(x)) * 4]) & 0xFFFFFFu; };
+        for (int y : {0, 7}) {
+            EXPECT_EQ(rgb(0, y), 0x302010u) << "transform mode, LMODE 0";
+            EXPECT_EQ(rgb(17, y), 0xAF9F8Fu) << "transform mode, LMODE 1: + 0x7F7F7F";
+            EXPECT_EQ(rgb(20, y), 0x302010u) << "through mode, LMODE 0";
+            EXPECT_EQ(rgb(37, y), 0x302010u) << "through mode, LMODE 1";
+        }
+        EXPECT_EQ(rgb(8, 0), 0u);
+    };
+    Frame s;
+    std::string err;
+    ASSERT_TRUE(renderWith(false, immediateSecondaryScene, s, err));
+    {
+        SCOPED_TRACE("soft");
+        check(s.vram);
+    }
+    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
+        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
+        Memory mem;
+        gl::GlOptions opt;
+        opt.mode = mode;
+        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
+        if (!r) GTEST_SKIP() << "no GL context: " << err;
+        check(runListVram(mem, *r, immediateSecondaryScene));
+    }
+}
+
 }  // namespace
 }  // namespace ge::gltest
