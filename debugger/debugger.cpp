@@ -142,17 +142,26 @@ std::string disassembly(const Memory& mem, u32 addr, u32 count, u32 mark) {
     return s;
 }
 
-bool readColor(const Memory& mem, const GeState& st, u32 width, u32 height, std::vector<u8>& rgba) {
-    rgba.clear();
+// Calls fn(raw) for each pixel of the frame buffer's width x height corner, rows top to bottom;
+// false when a pixel lies outside memory.
+template <class F>
+bool forEachFramePixel(const Memory& mem, const GeState& st, u32 width, u32 height, F&& fn) {
     const GeBufferFormat fmt = st.framebufFormat();
     const u32 bpp = fmt == GE_FORMAT_8888 ? 4 : 2;
     for (u32 y = 0; y < height; ++y)
         for (u32 x = 0; x < width; ++x) {
             u32 raw = 0;
             if (!pixelAt(mem, st.framebufAddr() + (y * st.framebufStride() + x) * bpp, fmt, raw)) return false;
-            putRgba(rgba, bpp == 4 ? raw : decodePixel16(u16(raw), fmt));
+            fn(raw);
         }
     return true;
+}
+
+bool readColor(const Memory& mem, const GeState& st, u32 width, u32 height, std::vector<u8>& rgba) {
+    rgba.clear();
+    const GeBufferFormat fmt = st.framebufFormat();
+    return forEachFramePixel(mem, st, width, height,
+                             [&](u32 raw) { putRgba(rgba, fmt == GE_FORMAT_8888 ? raw : decodePixel16(u16(raw), fmt)); });
 }
 
 bool readDepth(const Memory& mem, const GeState& st, u32 width, u32 height, std::vector<u16>& out) {
@@ -168,21 +177,11 @@ bool readDepth(const Memory& mem, const GeState& st, u32 width, u32 height, std:
 
 bool readStencil(const Memory& mem, const GeState& st, u32 width, u32 height, std::vector<u8>& out) {
     out.clear();
+    // The stencil lives in the colour buffer's alpha bits (manual §15; ge-reference §3.10).
     const GeBufferFormat fmt = st.framebufFormat();
-    const u32 bpp = fmt == GE_FORMAT_8888 ? 4 : 2;
-    for (u32 y = 0; y < height; ++y)
-        for (u32 x = 0; x < width; ++x) {
-            u32 raw = 0;
-            if (!pixelAt(mem, st.framebufAddr() + (y * st.framebufStride() + x) * bpp, fmt, raw)) return false;
-            // The stencil lives in the colour buffer's alpha bits (manual §15; ge-reference §3.10).
-            switch (fmt) {
-            case GE_FORMAT_565: out.push_back(0); break;
-            case GE_FORMAT_5551: out.push_back(u8(raw >> 15)); break;
-            case GE_FORMAT_4444: out.push_back(u8(raw >> 12)); break;
-            case GE_FORMAT_8888: out.push_back(u8(raw >> 24)); break;
-            }
-        }
-    return true;
+    const int shift = fmt == GE_FORMAT_5551 ? 15 : fmt == GE_FORMAT_4444 ? 12 : 24;
+    return forEachFramePixel(mem, st, width, height,
+                             [&](u32 raw) { out.push_back(fmt == GE_FORMAT_565 ? 0 : u8(raw >> shift)); });
 }
 
 bool readTexture(const Memory& mem, const GeState& st, int level, u32& width, u32& height, std::vector<u8>& rgba) {

@@ -26,28 +26,13 @@
 #include <string>
 
 #include "geometry/raster.h"
+#include "shadergen/hw_uniform_text.h"
 #include "shadergen/hw_vertex.h"
 
 namespace ge::shadergen {
 namespace {
 
-#define HW_WORD(member) int(offsetof(HwVsUniforms, member) / 4)
-
-std::string word(int w) {
-    static const char* const comp[4] = {"x", "y", "z", "w"};
-    return "u_hw[" + std::to_string(w / 4) + "]." + comp[w % 4];
-}
-std::string uf(int w) { return "uintBitsToFloat(" + word(w) + ")"; }
-std::string ui(int w) { return "int(" + word(w) + ")"; }
-
-// A float literal that reads back as exactly f.
-std::string flit(float f) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.9g", double(f));
-    std::string s = buf;
-    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-    return s;
-}
+using namespace hwtext;
 
 // Fixed text: helpers and the port of geometry/clip.cpp and VertexPipeline::triangle. The key
 // enters through GE_CLE, GE_PRIM, GE_FLAT, GE_TEXTURE, GE_THROUGH; the uniforms through GE_SX … GE_CULL_CCW.

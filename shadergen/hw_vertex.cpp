@@ -36,31 +36,13 @@
 #include <string>
 
 #include "geometry/raster.h"
+#include "shadergen/hw_uniform_text.h"
 #include "shadergen/hw_vertex.h"
 
 namespace ge::shadergen {
 namespace {
 
-// ---- uniform words (HwVsUniforms laid out as uvec4 u_hw[]) ----
-#define HW_WORD(member) int(offsetof(HwVsUniforms, member) / 4)
-
-std::string word(int w) {
-    static const char* const comp[4] = {"x", "y", "z", "w"};
-    return "u_hw[" + std::to_string(w / 4) + "]." + comp[w % 4];
-}
-std::string uf(int w) { return "uintBitsToFloat(" + word(w) + ")"; }
-std::string ui(int w) { return "int(" + word(w) + ")"; }
-std::string ivec3At(int w) { return "ivec3(" + ui(w) + ", " + ui(w + 1) + ", " + ui(w + 2) + ")"; }
-std::string vec3At(int w) { return "vec3(" + uf(w) + ", " + uf(w + 1) + ", " + uf(w + 2) + ")"; }
-
-// A float literal that reads back as exactly f.
-std::string flit(float f) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, "%.9g", double(f));
-    std::string s = buf;
-    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-    return s;
-}
+using namespace hwtext;
 
 const char* const kXyz[3] = {"x", "y", "z"};
 

@@ -22,22 +22,6 @@ namespace {
 
 constexpr u32 kContinue = 7;  // GU_CONTINUE: PRIM 7
 
-// Static arrays of the test program, laid out one after another from 0x08400000 (16-byte aligned).
-class StaticData {
-public:
-    explicit StaticData(GuSim& gu) : gu_(gu) {}
-    u32 put(const std::vector<u8>& bytes) {
-        const u32 at = next_;
-        gu_.cpuWrite(at, bytes.data(), u32(bytes.size()));
-        next_ = (at + u32(bytes.size()) + 15) & ~15u;
-        return at;
-    }
-
-private:
-    GuSim& gu_;
-    u32 next_ = 0x08400000;
-};
-
 struct Pt {
     u32 color;
     int x, y;
@@ -99,7 +83,7 @@ const std::vector<ScreenSpan> kIndicesScreen = {
 TestRun runIndices(GuSim& gu) {
     TestRun run{"primitives/indices", gu.backend(), {}};
     ListBuilder& b = startPrimitives(gu);
-    StaticData mem(gu);
+    StaticData mem(gu, 0x08400000);
     const u32 v1 = mem.put(p16(box(0xFF0000FF, 10, 10))), v2 = mem.put(p16(box(0xFF00FF00, 60, 10)));
     const u32 v3 = mem.put(p16(box(0xFFFF0000, 110, 10))), v4 = mem.put(p16(box(0xFF00FFFF, 160, 10)));
     const std::vector<Pt> b5 = box(0xFFFF00FF, 210, 10);
@@ -173,7 +157,7 @@ std::vector<ScreenSpan> continueScreen() {
 TestRun runContinue(GuSim& gu) {
     TestRun run{"primitives/continue", gu.backend(), {}};
     ListBuilder& b = startPrimitives(gu);
-    StaticData mem(gu);
+    StaticData mem(gu, 0x08400000);
     static constexpr u32 kColors[6] = {0xFF0000FF, 0xFF00FF00, 0xFFFF0000, 0xFF00FFFF, 0xFFFF00FF, 0xFFFFFF00};
     static constexpr u32 kPrims[6] = {GE_PRIM_POINTS,    GE_PRIM_LINES,          GE_PRIM_LINE_STRIP,
                                       GE_PRIM_TRIANGLES, GE_PRIM_TRIANGLE_STRIP, GE_PRIM_TRIANGLE_FAN};

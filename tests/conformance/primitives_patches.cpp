@@ -20,22 +20,6 @@ namespace {
 constexpr u32 kClut = 0x08380000, kImage = 0x08380040, kData = 0x08380100;
 constexpr u32 kRed = 0xFF0000FF;
 
-// Static arrays placed one after another from kData, 16-byte aligned.
-class StaticData {
-public:
-    explicit StaticData(GuSim& gu) : gu_(gu) {}
-    u32 put(const std::vector<u8>& bytes) {
-        const u32 at = next_;
-        gu_.cpuWrite(at, bytes.data(), u32(bytes.size()));
-        next_ = (at + u32(bytes.size()) + 15) & ~15u;
-        return at;
-    }
-
-private:
-    GuSim& gu_;
-    u32 next_ = kData;
-};
-
 // Vertex_C8888_P16 (12 bytes): a grid of 4 columns from x0, 10 apart, one row per y, colour per row.
 std::vector<u8> grid(int x0, const std::vector<int>& ys, const std::vector<u32>& rowColors) {
     std::vector<u8> out(ys.size() * 4 * 12, 0);
@@ -110,7 +94,7 @@ void drawPatches(GuSim& gu, bool spline) {
     u8 image[64] = {};
     image[17] = image[18] = image[33] = image[34] = 1;
     gu.cpuWrite(kImage, image, sizeof image);
-    StaticData mem(gu);
+    StaticData mem(gu, kData);
     const std::vector<int> rows = {10, 20, 30, 40}, pos = {10, 30, 35, 40};
     const u32 v1 = mem.put(grid(10, rows, kRed, kRed)), v2 = mem.put(uvGrid(50));
     const u32 v3 = mem.put(grid(90, rows, kRed, 0xFFFF0000));

@@ -38,4 +38,21 @@ void compareScreen(GuSim& gu, TestRun& run, u32 fb, u32 format, u32 background, 
 // spans alone do not describe compactly (a dither pattern).
 void compareScreen(GuSim& gu, TestRun& run, u32 fb, u32 format, const std::function<std::vector<u32>(int)>& row);
 
+// A test program's static arrays, laid out one after another from `base`, 16-byte aligned, as
+// its linker placed them; written with CPU copies.
+class StaticData {
+public:
+    StaticData(GuSim& gu, u32 base) : gu_(gu), next_(base) {}
+    u32 put(const std::vector<u8>& bytes) {
+        const u32 at = next_;
+        gu_.cpuWrite(at, bytes.data(), u32(bytes.size()));
+        next_ = (at + u32(bytes.size()) + 15) & ~15u;
+        return at;
+    }
+
+private:
+    GuSim& gu_;
+    u32 next_;
+};
+
 }  // namespace ge::conformance
