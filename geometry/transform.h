@@ -59,8 +59,10 @@ struct TransformState {
     float viewProj[16] = {};
 };
 
-// `vtype` is the draw's CMD_VTYPE word; `hasColor`/`hasNormal` whether its format carries them
-// (patch tessellation may generate normals: pass true then).
+// `vtype` is the draw's CMD_VTYPE word; `hasColor` whether its format carries a colour;
+// `hasNormal` whether the decoded vertices hold a normal: always for PRIM vertices (the format's,
+// or the vertex unit's latched one, GeState::latchNormal), for patches when the format has one or
+// tessellation generates them. Without, the normal is (0, 0, 1).
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal);
 
 // Processes one decoded vertex (morphing and skinning already applied) into `out`, including the

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "hle/ge_time.h"
+#include "hle/vertex_decoder.h"
 
 namespace ge {
 
@@ -318,10 +319,35 @@ void GeEngine::doPrim(u32 arg) {
     if (!chargeDraw(getime::perVertexCost(state_) * count)) return;
     renderer_->drawPrim(pkt);
     chargePixels();
+    latchVertexAttributes(pkt);
 
     // Pointers advance past the consumed data (§4.6).
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
     else state_.vertexAddr = (state_.vertexAddr + count * state_.vertexStride()) & 0x0FFFFFFF;
+}
+
+// The vertex unit keeps the last texture coordinate and normal it read (GeState::latchUV,
+// latchNormal), which later draws without them use. Which vertex is read last follows the reference
+// renderer (PPSSPP GPU/Software/TransformUnit.cpp, SoftwareVertexReader and ReadVertex): a format
+// without position reads nothing; an indexed draw with more indices than its index range holds
+// vertices reads that range in order (the highest index last), any other draw reads in draw order
+// (its last index). The UV is read only with texture mapping on outside clear mode (readUV); the
+// normal whenever the format has one. Patches leave both as they are (their vertices are generated).
+void GeEngine::latchVertexAttributes(const PrimPacket& p) {
+    const VertexReader r(mem_, state_, p.vtype);
+    const bool uv = r.hasUV() && state_.TME_on() && !state_.isClearMode();
+    if (!r.hasPosition() || (!uv && !r.hasNormal())) return;
+    u32 last = p.count - 1;
+    if (r.indexSize()) {
+        if (!r.readIndices(p.indexAddr, p.count, latchIndices_) || latchIndices_.empty()) return;
+        const auto [lo, hi] = std::minmax_element(latchIndices_.begin(), latchIndices_.end());
+        last = u64(p.count) > u64(*hi) - *lo + 1 ? *hi : latchIndices_.back();
+    }
+    DecodedVertex v;
+    if (!r.read(p.vertexAddr, last, v)) return;
+    applySkinning(state_, p.vtype, v);
+    if (uv) std::copy(v.uv, v.uv + 2, state_.latchUV);
+    if (r.hasNormal()) std::copy(v.nrm, v.nrm + 3, state_.latchNormal);
 }
 
 void GeEngine::doPatch(u32 word) {

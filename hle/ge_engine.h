@@ -166,6 +166,7 @@ public:
 private:
     void fail(GeError e, const std::string& msg);
     void doPrim(u32 arg);
+    void latchVertexAttributes(const PrimPacket& p);
     void doPatch(u32 word);
     void doBBox(u32 arg);
     void doTransfer(u32 arg);
@@ -192,6 +193,7 @@ private:
     std::vector<CommandObserver*> observers_;
     bool broke_ = false;
     GeState state_;
+    std::vector<u32> latchIndices_;  // latchVertexAttributes' scratch
     ListRegs list_;
     GeStats stats_;
     RunStatus status_ = RunStatus::Idle;

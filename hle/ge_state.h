@@ -79,6 +79,14 @@ struct GeState {
     // Palette RAM (1024 bytes) and how much of it the last CLOAD filled.
     alignas(16) u8 clut[1024] = {};
     u32 clutLoadedBytes = 0;
+    // The vertex unit's last texture coordinate and normal (decoded: morphed, skinned). A draw
+    // whose vertex format has no UV or no normal reads these instead: on a PSP the previous
+    // draw's last UV (0.75, 0.25) and normal (1, 1, 1) become the texture-matrix source of a draw
+    // without them (pspautotests gpu/texmtx/source), and the reference renderer keeps both across
+    // draws the same way (PPSSPP GPU/Software/TransformUnit.cpp ReadVertex, lastTC/lastnormal).
+    // GeEngine::latchVertexAttributes updates them after each PRIM.
+    float latchUV[2] = {};
+    float latchNormal[3] = {};
 
     u32 op(u8 cmd) const { return regs[cmd] & 0xFFFFFF; }
 

@@ -127,9 +127,11 @@ void putState(Writer& w, const GeState& s) {
         w.u32v(v);
     w.bytes(s.clut, sizeof s.clut);
     w.u32v(s.clutLoadedBytes);
+    for (float v : s.latchUV) w.f(v);
+    for (float v : s.latchNormal) w.f(v);
 }
 
-void getState(Reader& r, GeState& s) {
+void getState(Reader& r, GeState& s, u32 version) {
     for (u32& v : s.regs) v = r.u32v();
     for (float& v : s.bone) v = r.f();
     for (float& v : s.world) v = r.f();
@@ -142,6 +144,11 @@ void getState(Reader& r, GeState& s) {
     r.bytesTo(s.clut, sizeof s.clut);
     s.clutLoadedBytes = r.u32v();
     r.failIf(s.clutLoadedBytes > sizeof s.clut);
+    // Version 1 had no vertex latch: a state from it resumes with zeros (a fresh GE's values).
+    if (version >= 2) {
+        for (float& v : s.latchUV) v = r.f();
+        for (float& v : s.latchNormal) v = r.f();
+    }
     // A register word holds its own opcode in bits 31..24 (or 0 when never written).
     for (size_t op = 0; op < s.regs.size(); ++op) r.failIf(s.regs[op] != 0 && (s.regs[op] >> 24) != op);
 }
@@ -233,8 +240,8 @@ void putEngine(Writer& w, const GeEngine::Saved& e) {
     w.u8v(u8(e.immPrim));
 }
 
-void getEngine(Reader& r, GeEngine::Saved& e) {
-    getState(r, e.state);
+void getEngine(Reader& r, GeEngine::Saved& e, u32 version) {
+    getState(r, e.state, version);
     getList(r, e.list);
     getStats(r, e.stats);
     e.status = r.en(RunStatus::Error);
@@ -395,9 +402,9 @@ bool readHeader(std::span<const u8> blob, u32& version, u32& flags, std::span<co
     version = r.u32v();
     flags = r.u32v();
     const u64 size = r.u64v(), hash = r.u64v();
-    if (version != kFormatVersion) {
-        err = "save state format version " + std::to_string(version) + " (this ge2gl reads version " +
-              std::to_string(kFormatVersion) + ")";
+    if (version < kOldestFormatVersion || version > kFormatVersion) {
+        err = "save state format version " + std::to_string(version) + " (this ge2gl reads versions " +
+              std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion) + ")";
         return false;
     }
     if (size != blob.size() - kHeaderSize) {
@@ -466,7 +473,7 @@ bool load(std::span<const u8> blob, GeEngine& engine, SceGe& sce, Memory& mem, H
             return false;
         }
         Reader r(body, n);
-        if (t == kEngine) getEngine(r, e);
+        if (t == kEngine) getEngine(r, e, version);
         else if (t == kSce) getSce(r, s, edram);
         else if (t == kHost) hf.heldInterrupt = r.b();
         else {

@@ -22,7 +22,10 @@
 
 namespace ge::savestate {
 
-constexpr u32 kFormatVersion = 1;
+// Version 2 added the vertex unit's latched UV and normal (GeState::latchUV/latchNormal) at the
+// end of the engine's state; version 1 blobs still load (the latch starts at zero).
+constexpr u32 kFormatVersion = 2;
+constexpr u32 kOldestFormatVersion = 1;
 constexpr u32 kHeaderSize = 32;
 
 struct HostFlags {

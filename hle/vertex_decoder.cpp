@@ -177,8 +177,11 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
         }
     }
     std::copy(sum.pos, sum.pos + 3, out.pos);
-    std::copy(sum.uv, sum.uv + 2, out.uv);
-    std::copy(sum.nrm, sum.nrm + 3, out.nrm);
+    // An attribute the format lacks is the vertex unit's last value (GeState::latchUV/latchNormal).
+    if (hasUV()) std::copy(sum.uv, sum.uv + 2, out.uv);
+    else std::copy(st_.latchUV, st_.latchUV + 2, out.uv);
+    if (hasNormal()) std::copy(sum.nrm, sum.nrm + 3, out.nrm);
+    else std::copy(st_.latchNormal, st_.latchNormal + 3, out.nrm);
     std::copy(sum.w, sum.w + 8, out.weights);
     if (hasColor()) {
         for (int i = 0; i < 4; ++i) out.color[i] = colorToU8(sum.col[i]);

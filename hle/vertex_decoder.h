@@ -15,6 +15,7 @@ struct DecodedVertex {
     // coordinates, z 0..65535 (ref §5.4).
     float pos[3] = {};
     // Transform mode: u8 /128, u16 /32768, float. Through mode: texels.
+    // A format without UV or normal gives the vertex unit's last ones (GeState::latchUV/Normal).
     float uv[2] = {};
     float nrm[3] = {};
     float weights[8] = {};

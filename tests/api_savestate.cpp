@@ -192,13 +192,13 @@ TEST(SaveState, CorruptOrForeignBlobsAreRefusedAndChangeNothing) {
     b[0] = 'X';
     refused(b, "not a ge2gl save state");
     b = good;
-    b[8] = 2;  // format version 2
-    refused(b, "version 2");
+    b[8] = 3;  // format version 3
+    refused(b, "version 3");
     // Well signed, but values no GE can hold: the engine section's CALL depth (payload: tag 4,
     // size 4, registers 1024, matrices 592, indices and addresses 32, palette 1024, its count 4,
-    // pc 4, stall 4, call stack 16) set to 3, beyond the GE's two levels.
+    // the vertex latch 20, pc 4, stall 4, call stack 16) set to 3, beyond the GE's two levels.
     b = good;
-    const size_t callDepth = 32 + 8 + 1024 + 592 + 32 + 1024 + 4 + 24;
+    const size_t callDepth = 32 + 8 + 1024 + 592 + 32 + 1024 + 4 + 20 + 24;
     ASSERT_EQ(b[callDepth], 0u);
     b[callDepth] = 3;
     resign(b);
@@ -210,6 +210,30 @@ TEST(SaveState, CorruptOrForeignBlobsAreRefusedAndChangeNothing) {
     refused(b, "malformed");
     refused({}, "not a ge2gl save state");
     EXPECT_EQ(ge2gl_state_load(other, nullptr, 10), GE2GL_ERR_INVALID_ARGUMENT);
+
+    // A version-1 blob (no vertex latch in the engine section) still loads: the same state with
+    // the latch's 20 bytes taken out, the section size and the header's payload size less 20.
+    {
+        std::vector<uint8_t> v1 = good;
+        const size_t latch = 32 + 8 + 1024 + 592 + 32 + 1024 + 4;
+        v1.erase(v1.begin() + std::ptrdiff_t(latch), v1.begin() + std::ptrdiff_t(latch + 20));
+        auto sub20 = [&](size_t at, int bytes) {
+            uint64_t v = 0;
+            for (int i = 0; i < bytes; ++i) v |= uint64_t(v1[at + size_t(i)]) << (8 * i);
+            v -= 20;
+            for (int i = 0; i < bytes; ++i) v1[at + size_t(i)] = uint8_t(v >> (8 * i));
+        };
+        sub20(32 + 4, 4);  // ENGN section size
+        sub20(16, 8);      // payload size in the header
+        v1[8] = 1;
+        resign(v1);
+        ge2gl_context* old = createHandle(GE2GL_BACKEND_SOFT);
+        ASSERT_NE(old, nullptr);
+        EXPECT_EQ(ge2gl_state_load(old, v1.data(), v1.size()), GE2GL_OK) << ge2gl_last_message(old);
+        // Saved again it is the version-2 state it came from (this list never drew: latch zero).
+        EXPECT_EQ(saveBytes(old, 0), good);
+        ge2gl_destroy(old);
+    }
 
     // The good blob still loads, and the loaded GE goes on from the stall.
     ASSERT_EQ(ge2gl_state_load(other, good.data(), good.size()), GE2GL_OK) << ge2gl_last_message(other);

@@ -380,5 +380,79 @@ TEST(GlVsSoft, ImmediateSecondaryColourOnlyWithSeparateSpecularInTransformMode) 
     }
 }
 
+// A draw whose vertex format has no texture coordinates takes the vertex unit's last ones
+// (GeState::latchUV): a PSP shows it in pspautotests gpu/texmtx/source (the previous draw's last
+// UV becomes the source of a draw without UVs), and the reference renderer keeps them the same
+// way (PPSSPP TransformUnit.cpp ReadVertex lastTC, updated only when it reads UVs: texture mapping
+// on, not clear mode; the last vertex read is the last index in draw order, or the highest index
+// when an indexed draw reuses vertices). Through-mode rectangles over a 2x2 texture, nearest,
+// REPLACE: texel (0,0) red, (1,0) green, (0,1) blue, (1,1) white.
+void latchedUvScene(ListBuilder& b) {
+    frameSetup(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    // Rows 4 texels apart: the smallest 8888 buffer width (16 bytes, manual §6.2).
+    const u32 texels[8] = {0xFF0000FFu, 0xFF00FF00u, 0, 0, 0xFFFF0000u, 0xFFFFFFFFu, 0, 0};
+    b.texMode(GE_TFMT_8888, 0, false);
+    b.setTexture(0, b.place(texels, sizeof texels), 2, 2, 4);
+    b.texFunc(3, true);  // REPLACE (manual §6.7)
+    b.texFilter(0, 0);
+    b.enable(GE_CMD_TME, true);
+    const u32 withUv = vt::TC_F | vt::COL_8888 | vt::POS_16 | vt::THROUGH, noUv = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    auto rect = [&](u32 vtype, float x, float y, float u, float v) {
+        BuildVertex q[2];
+        q[0].x = x, q[0].y = y, q[1].x = x + 8, q[1].y = y + 8;
+        q[0].u = q[1].u = u, q[0].v = q[1].v = v;
+        q[0].color = q[1].color = 0xFF808080u;
+        const std::vector<u8> data = packVertices(vtype, q, 2);
+        b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+    };
+    rect(withUv, 0, 0, 1.5f, 0.5f);   // green, latches (1.5, 0.5)
+    rect(noUv, 10, 0, 0, 0);          // green: the latch
+    b.enable(GE_CMD_TME, false);
+    rect(withUv, 20, 0, 0.5f, 1.5f);  // grey vertex colour; texture mapping off: latch unchanged
+    b.enable(GE_CMD_TME, true);
+    rect(noUv, 30, 0, 0, 0);          // green still
+    // Indexed: v0 (0.5, 1.5) blue, v1 unused, v2 (1.5, 1.5) white, drawn at (40..48, 20..28).
+    BuildVertex v[3];
+    v[0].x = 48, v[0].y = 28, v[0].u = 0.5f, v[0].v = 1.5f;
+    v[1].x = 44, v[1].y = 24;
+    v[2].x = 40, v[2].y = 20, v[2].u = 1.5f, v[2].v = 1.5f;
+    const std::vector<u8> data = packVertices(withUv | vt::IDX_8, v, 3);
+    const u8 drawOrder[2] = {2, 0};  // fewer indices than the range's 3 vertices: index 0 is read last
+    b.drawArrayData(GE_PRIM_RECTANGLES, withUv | vt::IDX_8, 2, drawOrder, data.data());
+    rect(noUv, 0, 10, 0, 0);   // blue
+    const u8 reuse[4] = {0, 2, 2, 0};  // more indices than vertices in 0..2: the range is read, 2 last
+    b.drawArrayData(GE_PRIM_RECTANGLES, withUv | vt::IDX_8, 4, reuse, data.data());
+    rect(noUv, 10, 10, 0, 0);  // white
+}
+
+TEST(GlVsSoft, DrawsWithoutUvTakeTheLastUvTheVertexUnitRead) {
+    auto check = [](const std::vector<u8>& vram) {
+        auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 64 + size_t(x)) * 4]) & 0xFFFFFFu; };
+        EXPECT_EQ(rgb(4, 4), 0x00FF00u) << "with UV (1.5, 0.5)";
+        EXPECT_EQ(rgb(14, 4), 0x00FF00u) << "without UV: the latched (1.5, 0.5)";
+        EXPECT_EQ(rgb(24, 4), 0x808080u) << "texture mapping off";
+        EXPECT_EQ(rgb(34, 4), 0x00FF00u) << "a draw with texture mapping off latches nothing";
+        EXPECT_EQ(rgb(4, 14), 0xFF0000u) << "indexed: the last index in draw order";
+        EXPECT_EQ(rgb(14, 14), 0xFFFFFFu) << "indexed with reuse: the highest index";
+    };
+    Frame s;
+    std::string err;
+    ASSERT_TRUE(renderWith(false, latchedUvScene, s, err));
+    {
+        SCOPED_TRACE("soft");
+        check(s.vram);
+    }
+    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
+        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
+        Memory mem;
+        gl::GlOptions opt;
+        opt.mode = mode;
+        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
+        if (!r) GTEST_SKIP() << "no GL context: " << err;
+        check(runListVram(mem, *r, latchedUvScene));
+    }
+}
+
 }  // namespace
 }  // namespace ge::gltest

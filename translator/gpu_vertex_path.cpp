@@ -17,6 +17,7 @@ const char* cpuReasonName(CpuReason r) {
         case CpuReason::AlphaRule: return "alpha rule";
         case CpuReason::DstTexture: return "dst texture";
         case CpuReason::Memory: return "memory";
+        case CpuReason::Latched: return "latched uv/normal";
         default: return "?";
     }
 }
@@ -41,6 +42,25 @@ GpuVertexPath::~GpuVertexPath() {
     gl.DeleteBuffers(1, &idxBuf_);
 }
 
+namespace {
+
+// A format without UV or normal takes the vertex unit's latched ones (GeState::latchUV,
+// latchNormal), which the vertex shader does not have: such draws stay on the CPU when they read
+// the missing attribute. UV: texture mapping from UVs (modes 0 and 3, or the texture matrix from
+// UVs). Normal:
+// lighting or shade mapping with a latched normal (a zero one normalises to (0, 0, 1), as the
+// shader's default), and the texture matrix from the normal (where zero and (0, 0, 1) differ).
+bool latchedAttributeUsed(const GeState& st, const VertexReader& reader, bool texture) {
+    const u32 texMap = st.TMAP_mode();
+    const bool fromNormal = texMap == 1 && st.TMAP_proj() >= 2;
+    if (!reader.hasUV() && texture && (texMap == 0 || texMap == 3 || (texMap == 1 && st.TMAP_proj() == 1))) return true;
+    if (reader.hasNormal()) return false;
+    const bool zero = st.latchNormal[0] == 0.0f && st.latchNormal[1] == 0.0f && st.latchNormal[2] == 0.0f;
+    return fromNormal || (!zero && (st.LTE_on() || texMap == 2));
+}
+
+}  // namespace
+
 bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPacket& p, bool texture, bool fog,
                             bool cull, bool cullCcw, bool dstTexture, GpuDraw& out) {
     GLenum mode;
@@ -64,6 +84,7 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
     if (!ctx_.f().Uniform4uiv || !ctx_.f().DrawElements) return reject(CpuReason::PrimKind);
 
     VertexReader reader(mem, st, p.vtype);
+    if (latchedAttributeUsed(st, reader, texture)) return reject(CpuReason::Latched);
     if (!reader.readIndices(p.indexAddr, p.count, rawIndices_)) return reject(CpuReason::Memory);
     out.key = shadergen::hwVsKeyFromState(st, texture, fog);
     // The geometry shader does what needs the whole primitive: the discard rules, near clipping

@@ -16,7 +16,9 @@
 //  - destination reads through a texture (no framebuffer fetch): primitives of one draw that
 //    overlap must be ordered by barriers, which needs their bounds;
 //  - vertex or index bytes the guest memory cannot supply whole (the CPU path draws the readable
-//    part and reports the error).
+//    part and reports the error);
+//  - draws that read a UV or normal their format lacks: the vertex unit's latched value
+//    (GeState::latchUV / latchNormal) is the CPU decoder's.
 #pragma once
 #include <string>
 #include <vector>
@@ -43,7 +45,7 @@ struct GpuDraw {
 };
 
 // Why a draw stays on the CPU (indices into GpuVertexStats::cpu).
-enum class CpuReason : u8 { PrimKind, Quad, Continuation, AlphaRule, DstTexture, Memory, Count };
+enum class CpuReason : u8 { PrimKind, Quad, Continuation, AlphaRule, DstTexture, Memory, Latched, Count };
 const char* cpuReasonName(CpuReason r);
 
 struct GpuVertexStats {

@@ -437,7 +437,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
         stripOdd_ = false;
     }
     VertexReader reader(mem, st, p.vtype);
-    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
+    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
     // The still-open vertices of the previous PRIM come first (type 7, ref §3.2).
     cverts_.assign(pending_.begin(), pending_.end());
     std::vector<u32> indices;
@@ -508,7 +508,7 @@ void VertexPipeline::keepOpenVertices(const Memory& mem, const GeState& st, cons
             break;
         default: return;
     }
-    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal());
+    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
     const bool skin = reader.hasWeights() && !reader.through();
     for (size_t i : open) {
         DecodedVertex dv;
