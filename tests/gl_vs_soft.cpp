@@ -454,5 +454,38 @@ TEST(GlVsSoft, DrawsWithoutUvTakeTheLastUvTheVertexUnitRead) {
     }
 }
 
+// Fragment uniforms are uploaded only when the program does not already hold them (the GL
+// renderer's per-program shadow): programs alternate here with the same and with other texture
+// environment colours, so a shadow kept for the wrong program or not refreshed shows as a
+// sprite in the wrong colour. Texture function BLEND mixes the vertex colour and the environment
+// colour by the texel (manual §6.7).
+TEST(GlVsSoft, UniformsFollowEachProgramAcrossSwitches) {
+    expectSame([](ListBuilder& b) {
+        frameSetup(b);
+        b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+        const u32 texels[4] = {0xFF404040u, 0xFFC0C0C0u, 0xFF808080u, 0xFFFFFFFFu};
+        b.texMode(GE_TFMT_8888, 0, false);
+        b.setTexture(0, b.place(texels, sizeof texels), 4, 1, 4);
+        b.texFunc(2, false);  // BLEND
+        b.texFilter(0, 0);
+        b.enable(GE_CMD_TME, true);
+        const u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+        // Even sprites one program, odd ones another (the alpha test on); each colour is set
+        // first for one program and then for the other, which a shadow shared by the programs
+        // would take as already uploaded.
+        const u32 env[8] = {0x0000FF, 0x00FF00, 0x00FF00, 0xFF0000, 0xFF0000, 0xFF0000, 0xFF00FF, 0xFF00FF};
+        b.alphaFunc(7, 0x10);  // GEQUAL 0x10: every texel passes
+        for (int i = 0; i < 8; ++i) {
+            b.enable(GE_CMD_ATE, (i & 1) != 0);
+            b.texEnvColor(env[i]);
+            BuildVertex q[2];
+            q[0].x = float(8 * i), q[0].y = 0, q[1].x = float(8 * i + 7), q[1].y = 16, q[1].u = 4, q[1].v = 1;
+            q[0].color = q[1].color = 0xFF302010u;
+            const std::vector<u8> data = packVertices(vtype, q, 2);
+            b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+        }
+    }, 0, 0);
+}
+
 }  // namespace
 }  // namespace ge::gltest

@@ -462,7 +462,7 @@ private:
         const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
         std::string err;
         const Program* prog = programs_.getHw(gpuDraw_.key, s.fs, &err);
-        if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false;
+        if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false, uniformShadow_.clear();
         if (!prog) {
             noteError(err);
             return true;
@@ -682,7 +682,17 @@ private:
         if (s.fs.dstRead == shadergen::DstRead::Texture) bindUnit(shadergen::kUnitDstColor, dstColor, cache_.dstColor);
         if (s.fs.depthRead == shadergen::DepthRead::Texture) bindUnit(shadergen::kUnitDstDepth, dstDepth, cache_.dstDepth);
 
-        // Uniforms: set per flush (cheap next to a draw; keeps no per-program shadow copies).
+        // Uniforms are program state: a program whose last values are these needs no upload (a
+        // glUniform call makes the driver re-validate the program's constants before the next
+        // draw). The shadow is dropped whenever a program is created (an id could come back).
+        UniformShadow& shadow = uniformShadow_[prog.id];
+        if (shadow.valid && std::memcmp(&shadow.u, &s.u, sizeof s.u) == 0) {
+            ++stats_.uniformUploadsSkipped;
+            return;
+        }
+        shadow.u = s.u;
+        shadow.valid = true;
+        ++stats_.uniformUploads;
         const shadergen::FsUniforms& u = s.u;
         if (prog.ndcScale >= 0) gl_.Uniform2f(prog.ndcScale, 2.0f / kTargetSize, 2.0f / kTargetSize);
         if (prog.texEnv >= 0) gl_.Uniform3iv(prog.texEnv, 1, u.texEnv);
@@ -735,7 +745,7 @@ private:
         const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
         std::string err;
         const Program* prog = programs_.get(s.vs, s.fs, &err);
-        if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false;
+        if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false, uniformShadow_.clear();
         if (!prog) {
             noteError(err);
             geo_.clear();
@@ -860,6 +870,12 @@ private:
     Geometry drawGeo_;  // the current draw's geometry, before it joins the batch
     Setup batchSetup_;
     StateCache cache_;
+    // Per program: the fragment uniforms last uploaded (applyState).
+    struct UniformShadow {
+        shadergen::FsUniforms u;
+        bool valid = false;
+    };
+    std::unordered_map<GLuint, UniformShadow> uniformShadow_;
     u64 seenClobbers_ = 0;
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
@@ -902,6 +918,8 @@ std::string glStatsText(const GlStats& s) {
     line("draws", s.draws);
     line("glDrawCalls", s.glDrawCalls);
     line("stateChanges", s.stateChanges);
+    line("uniformUploads", s.uniformUploads);
+    line("uniformSkipped", s.uniformUploadsSkipped);
     line("shaderCompiles", s.shaderCompiles);
     line("shaderCacheHits", s.shaderCacheHits);
     line("diskCacheHits", s.diskCacheHits);

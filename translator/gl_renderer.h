@@ -66,7 +66,9 @@ struct GlStats {
         rttGpu = 0, rttVram = 0, transfersGpu = 0,
         // Hardware mode: PRIM draws whose vertices the vertex shader processed / that stayed on
         // the CPU (reasons in gpuVertexStats, gpu_vertex_path.h).
-        gpuVertexDraws = 0, cpuVertexDraws = 0;
+        gpuVertexDraws = 0, cpuVertexDraws = 0,
+        // Fragment-uniform sets per flush: uploaded / skipped because the program already held them.
+        uniformUploads = 0, uniformUploadsSkipped = 0;
     u64 cpuVertexByReason[8] = {};  // gpu_vertex_path.h CpuReason order
 };
 
