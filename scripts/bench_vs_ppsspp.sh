@@ -4,10 +4,14 @@
 # of each pair's wall times, and the median of those ratios (per dump, over all dumps, and over the
 # five dumps PPSSPP takes longest on). Peak RSS of each side too.
 #
-#   PPSSPP_HEADLESS=/path/to/PPSSPPHeadless scripts/bench_vs_ppsspp.sh [BUILD_DIR] [ROUNDS] [DUMP...]
+#   PPSSPP_HEADLESS=/path/to/PPSSPPHeadless [BENCH_MODES="soft gl"] scripts/bench_vs_ppsspp.sh [BUILD_DIR] [ROUNDS] [DUMP...]
 #
 # Modes: soft (ge2gl --backend soft vs PPSSPP --graphics=software) and gl (ge2gl --backend gl, exact
-# mode on OSMesa/llvmpipe, vs PPSSPP --graphics=gles on Mesa's software GL). Dumps default to
+# mode on OSMesa/llvmpipe, vs PPSSPP --graphics=gles on Mesa's software GL). Both sides write the
+# frame as a PNG. A mode whose PPSSPP run fails (a build without a headless GL context answers
+# --graphics=gles with an error) is reported and skipped, not timed. A PPSSPP whose GL context
+# needs an X display takes it from DISPLAY (start the server beforehand, so that its start is not
+# timed: docs/benchmarks.md). Dumps default to
 # ../shared/frametests/dumps. PPSSPP is not a dependency: without PPSSPP_HEADLESS the script says
 # so and exits 0. How to build PPSSPPHeadless: docs/benchmarks.md.
 set -uo pipefail
@@ -24,26 +28,30 @@ dumps=("$@")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# One timed run: prints "seconds maxrss_kib".
+# One timed run: prints "seconds maxrss_kib", or "fail 0" when the command exits non-zero.
 timed() {
-  /usr/bin/time -f "%e %M" -o "$tmp/t" "$@" >/dev/null 2>&1
-  tail -1 "$tmp/t"
+  if /usr/bin/time -f "%e %M" -o "$tmp/t" "$@" >/dev/null 2>&1; then tail -1 "$tmp/t"; else echo "fail 0"; fi
 }
 
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-for mode in soft gl; do
+for mode in ${BENCH_MODES:-soft gl}; do
   if [ "$mode" = soft ]; then ours=(--backend soft); theirs=(--graphics=software); else ours=(--backend gl); theirs=(--graphics=gles); fi
   : > "$tmp/$mode.rows"
+  read -r probe _ < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" "${theirs[@]}" --timeout=60 --screenshot-save="$tmp/p.png" "${dumps[0]}")
+  if [ "$probe" = fail ]; then
+    echo "$mode: PPSSPP fails with ${theirs[*]} on $(basename "${dumps[0]}") (no such renderer in this build?): not measured"
+    continue
+  fi
   printf "== %s ==\n%-58s %9s %9s %7s %8s %8s\n" "$mode" dump "ge2gl s" "ppsspp s" ratio "ge2gl MiB" "ppsspp MiB"
   for d in "${dumps[@]}"; do
     : > "$tmp/ratios"
     for ((r = 0; r < rounds; ++r)); do
       if ((r % 2 == 0)); then
         read -r a am < <(timed "$build/ge2gl" render "$d" "${ours[@]}" -o "$tmp/o.png")
-        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" -l "${theirs[@]}" --screenshot-save="$tmp/p.bmp" "$d")
+        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" "${theirs[@]}" --timeout=60 --screenshot-save="$tmp/p.png" "$d")
       else
-        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" -l "${theirs[@]}" --screenshot-save="$tmp/p.bmp" "$d")
+        read -r b bm < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" "${theirs[@]}" --timeout=60 --screenshot-save="$tmp/p.png" "$d")
         read -r a am < <(timed "$build/ge2gl" render "$d" "${ours[@]}" -o "$tmp/o.png")
       fi
       awk -v a="$a" -v b="$b" 'BEGIN { if (b > 0) printf "%.4f\n", a / b }' >> "$tmp/ratios"

@@ -16,6 +16,8 @@ if [ -d "$root/../shared/frametests/dumps" ]; then
   echo "== README: the GNU parallel recipe as written (scripts/check_parallel_recipe.sh) =="
   bash "$root/scripts/check_parallel_recipe.sh"
 fi
+echo "== scripts/bench_vs_ppsspp.sh against a stand-in PPSSPP (scripts/check_bench_vs_ppsspp.sh) =="
+bash "$root/scripts/check_bench_vs_ppsspp.sh" "$root/build" >/dev/null
 echo "== hostile dumps: clean exit within 10 s and 1 GiB, both backends =="
 bash "$root/scripts/check_dumps.sh" "$root/build"
 echo "== install: CMake package, pkg-config, add_subdirectory (scripts/check_install.sh) =="
