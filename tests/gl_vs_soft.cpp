@@ -38,6 +38,28 @@ bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& 
     return true;
 }
 
+// Renders `scene` on the software model and on GL in exact and hardware mode, and runs `check`
+// on each one's VRAM (traced with the backend's name).
+void checkEveryBackend(const std::function<void(ListBuilder&)>& scene,
+                       const std::function<void(const std::vector<u8>&)>& check) {
+    Frame s;
+    std::string err;
+    ASSERT_TRUE(renderWith(false, scene, s, err));
+    {
+        SCOPED_TRACE("soft");
+        check(s.vram);
+    }
+    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
+        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
+        Memory mem;
+        gl::GlOptions opt;
+        opt.mode = mode;
+        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
+        if (!r) GTEST_SKIP() << "no GL context: " << err;
+        check(runListVram(mem, *r, scene));
+    }
+}
+
 void frameSetup(ListBuilder& b, u32 fmt = GE_FORMAT_8888) {
     b.drawBuffer(fmt, 0, 64);
     b.depthBuffer(0x100000, 64);
@@ -362,22 +384,7 @@ TEST(GlVsSoft, ImmediateSecondaryColourOnlyWithSeparateSpecularInTransformMode) 
         }
         EXPECT_EQ(rgb(8, 0), 0u);
     };
-    Frame s;
-    std::string err;
-    ASSERT_TRUE(renderWith(false, immediateSecondaryScene, s, err));
-    {
-        SCOPED_TRACE("soft");
-        check(s.vram);
-    }
-    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
-        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
-        Memory mem;
-        gl::GlOptions opt;
-        opt.mode = mode;
-        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
-        if (!r) GTEST_SKIP() << "no GL context: " << err;
-        check(runListVram(mem, *r, immediateSecondaryScene));
-    }
+    checkEveryBackend(immediateSecondaryScene, check);
 }
 
 // A draw whose vertex format has no texture coordinates takes the vertex unit's last ones
@@ -436,22 +443,7 @@ TEST(GlVsSoft, DrawsWithoutUvTakeTheLastUvTheVertexUnitRead) {
         EXPECT_EQ(rgb(4, 14), 0xFF0000u) << "indexed: the last index in draw order";
         EXPECT_EQ(rgb(14, 14), 0xFFFFFFu) << "indexed with reuse: the highest index";
     };
-    Frame s;
-    std::string err;
-    ASSERT_TRUE(renderWith(false, latchedUvScene, s, err));
-    {
-        SCOPED_TRACE("soft");
-        check(s.vram);
-    }
-    for (gl::GlMode mode : {gl::GlMode::Exact, gl::GlMode::Hw}) {
-        SCOPED_TRACE(mode == gl::GlMode::Hw ? "GL hw" : "GL exact");
-        Memory mem;
-        gl::GlOptions opt;
-        opt.mode = mode;
-        std::unique_ptr<Renderer> r = gl::createGlRenderer(mem, opt, err);
-        if (!r) GTEST_SKIP() << "no GL context: " << err;
-        check(runListVram(mem, *r, latchedUvScene));
-    }
+    checkEveryBackend(latchedUvScene, check);
 }
 
 // Fragment uniforms are uploaded only when the program does not already hold them (the GL
