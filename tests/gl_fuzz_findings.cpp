@@ -28,6 +28,29 @@ TEST_P(GlFuzzFindings, DepthBufferOnTheColourBufferDrawsColour) {
     EXPECT_EQ(px32(40, 40), 0u);
 }
 
+// fuzz_replay_gl reuses one renderer for every input through glForgetGuestMemory: a target drawn
+// into and not yet written back must be dropped, not written over the new memory, and the next
+// draw must start from what VRAM holds now (a fresh renderer's view).
+TEST_P(GlFuzzFindings, ForgetGuestMemoryActsAsAFreshRenderer) {
+    setupFrame();
+    rect(0, 0, 32, 32, 0xFF0000FF);
+    b->finish();
+    engine->startList(b->placeList(), 0);
+    engine->run();  // drawn into the target, not written back
+    b = std::make_unique<ListBuilder>(mem.get(), b->arenaNext());
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) mem->write32(0x04000000 + kFbOffset + u32(y * int(kStride) + x) * 4, 0xFF00FF00u);
+    gl::glForgetGuestMemory(*renderer);
+    renderer->flushToMemory();
+    EXPECT_EQ(px32(10, 10), 0xFF00FF00u);  // the red square was not written back
+    setupFrame();
+    rect(40, 40, 48, 48, 0xFFFF0000);
+    run();
+    EXPECT_EQ(px32(10, 10), 0xFF00FF00u);  // the new target was read from VRAM
+    EXPECT_EQ(px32(44, 44), 0xFFFF0000u);  // alpha (stencil bits) kept: no stencil writes
+    EXPECT_EQ(px32(50, 50), 0xFF00FF00u);
+}
+
 INSTANTIATE_TEST_SUITE_P(Paths, GlFuzzFindings, GE2GL_GL_PATHS);
 
 }  // namespace

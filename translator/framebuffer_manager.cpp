@@ -76,6 +76,7 @@ FramebufferManager::FramebufferManager(const GlContext& ctx, Memory& mem, int sc
 FramebufferManager::~FramebufferManager() {
     const GlFuncs& gl = ctx_.f();
     for (auto& t : targets_) gl.DeleteTextures(1, &t->tex);
+    for (const SpareTexture& s : spare_) gl.DeleteTextures(1, &s.tex);
     gl.DeleteFramebuffers(1, &drawFbo_);
     gl.DeleteFramebuffers(1, &readFbo_);
     gl.DeleteFramebuffers(1, &utilFbo_);
@@ -96,6 +97,30 @@ Target* FramebufferManager::find(bool depth, u32 addr, u32 stride, GeBufferForma
 
 GLuint FramebufferManager::allocTexture(bool depth, int w, int h) {
     const GlFuncs& gl = ctx_.f();
+    for (size_t i = 0; i < spare_.size(); ++i) {
+        if (spare_[i].depth == depth && spare_[i].w == w && spare_[i].h == h) {
+            const GLuint tex = spare_[i].tex;
+            spare_.erase(spare_.begin() + std::ptrdiff_t(i));
+            // Zeroed as Mesa's new textures are, so that reuse changes nothing a renderer can see.
+            const GLenum attach = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0;
+            gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, utilFbo_);
+            gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, attach, GL_TEXTURE_2D, tex, 0);
+            gl.Disable(GL_SCISSOR_TEST);
+            if (depth) {
+                const GLfloat zero = 0;
+                gl.DepthMask(GL_TRUE);
+                gl.ClearBufferfv(GL_DEPTH, 0, &zero);
+            } else {
+                const GLuint zero[4] = {0, 0, 0, 0};
+                gl.DrawBuffer(GL_COLOR_ATTACHMENT0);
+                gl.ColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+                gl.ClearBufferuiv(GL_COLOR, 0, zero);
+            }
+            gl.FramebufferTexture2D(GL_DRAW_FRAMEBUFFER, attach, GL_TEXTURE_2D, 0, 0);
+            ++clobbers_;  // masks, scissor and the framebuffer binding changed
+            return tex;
+        }
+    }
     GLuint tex = 0;
     gl.GenTextures(1, &tex);
     nearestTexture(gl, tex);
@@ -548,6 +573,20 @@ void FramebufferManager::flushAll() {
         if (!t->dirty.empty()) writeBack(*t);
         hashRows(*t);  // VRAM and the target agree now
     }
+}
+
+void FramebufferManager::forgetAll() {
+    const GlFuncs& gl = ctx_.f();
+    for (auto& t : targets_) {
+        if (spare_.size() < kSpareTextures)
+            spare_.push_back({t->depth, t->texCols() * scale_, t->allocRows * scale_, t->tex});
+        else
+            gl.DeleteTextures(1, &t->tex);
+    }
+    targets_.clear();
+    boundColor_ = 0, boundDepth_ = ~0u;  // force re-attach
+    ++clobbers_;  // the renderer may hold a deleted texture name bound as a destination copy
+    suspect_ = false;
 }
 
 void FramebufferManager::hashRows(Target& t) {

@@ -92,6 +92,10 @@ public:
     // Guest memory changed under the targets: re-upload the overlapping spans.
     void memoryWritten(u32 addr, u32 size);
     void flushAll();
+    // Drops every target without writing anything back (guest memory was replaced wholesale):
+    // the next draws create targets from VRAM as a fresh manager would. Their textures are kept
+    // for reuse by the next targets of the same size (kSpareTextures at most).
+    void forgetAll();
     // Any dirty target overlapping [addr, addr+size) (size 0: to the end of VRAM)?
     bool dirtyOverlaps(u32 addr, u32 size) const;
     // The host may have written VRAM: check clean targets against their row hashes on next use.
@@ -148,6 +152,15 @@ private:
     Memory& mem_;
     const int scale_;
     std::vector<std::unique_ptr<Target>> targets_;
+    // Textures of forgotten targets; allocTexture takes one of the same kind and size first.
+    // Their texels are stale, as a new texture's are undefined (every row is uploaded before use).
+    struct SpareTexture {
+        bool depth;
+        int w, h;
+        GLuint tex;
+    };
+    static constexpr size_t kSpareTextures = 16;
+    std::vector<SpareTexture> spare_;
     GLuint drawFbo_ = 0, readFbo_ = 0, utilFbo_ = 0;
     GLuint boundColor_ = 0, boundDepth_ = ~0u;
     // Depth upload: R16UI staging texture drawn into the depth target by a tiny program.

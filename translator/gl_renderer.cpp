@@ -288,6 +288,16 @@ public:
         fb_.memoryWritten(addr, size);
         ++generation_;
     }
+    void forgetGuestMemory() {
+        flush();
+        presenter_.reset();
+        fb_.forgetAll();
+        textures_.clear();
+        for (auto& kv : palettes_) gl_.DeleteTextures(1, &kv.second);
+        palettes_.clear();
+        ++generation_;
+        forgetGlState();  // the state cache may name deleted textures
+    }
     void flushToMemory() override {
         flush();
         fb_.flushAll();
@@ -907,6 +917,7 @@ std::unique_ptr<Renderer> createGlRenderer(Memory& mem, const GlOptions& opt, st
 }
 
 GlStats glStats(const Renderer& r) { return static_cast<const GlRenderer&>(r).stats(); }
+void glForgetGuestMemory(Renderer& r) { static_cast<GlRenderer&>(r).forgetGuestMemory(); }
 
 std::string glStatsText(const GlStats& s) {
     std::string out;

@@ -86,6 +86,12 @@ int glReadScaledFrame(ge::Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat 
 unsigned glPresentFrame(ge::Renderer& r, u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, int outW, int outH,
                         std::string& err);
 int glRenderScale(const ge::Renderer& r);
+// Guest memory was replaced wholesale (the host restored it, or reuses the renderer for another
+// dump): draws what is batched, then drops every render target, texture and palette without
+// writing anything back. The renderer then reads memory as a fresh one would; compiled programs
+// stay (creating them dominates a fresh renderer's cost). The fuzz harness replay_gl runs each
+// input this way.
+void glForgetGuestMemory(ge::Renderer& r);
 // Plugin API calls that touch GL are bracketed by these (gl_host_state.h): a headless context is
 // made current on the calling thread and the thread's previous one restored after; a host's
 // context has its state saved and restored; either way the renderer re-establishes its own state
