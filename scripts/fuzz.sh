@@ -11,7 +11,8 @@
 # when any harness finds a crash, leak, timeout or out-of-memory, naming the reproducer (run
 # `build-fuzz/fuzz/fuzz_NAME FILE` to replay it).
 # Environment: GE2GL_FUZZ_BUILD (build dir, default build-fuzz), GE2GL_FUZZ_JOBS (ninja -j,
-# default: all cores), GE2GL_FUZZ_ARGS (extra libFuzzer flags, e.g. "-runs=1000000").
+# default: all cores), GE2GL_FUZZ_ARGS (extra libFuzzer flags, e.g. "-runs=1000000"),
+# GE2GL_FUZZ_PARALLEL (harnesses run at once, default 1: one after the other; each takes a core).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 secs=${1:-60}
@@ -25,6 +26,9 @@ jobs=${GE2GL_FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}
 for h in "${harnesses[@]}"; do
   [[ " ${all[*]} " == *" $h "* ]] || { echo "fuzz.sh: unknown harness '$h' (${all[*]})" >&2; exit 2; }
 done
+
+parallel=${GE2GL_FUZZ_PARALLEL:-1}
+[[ "$parallel" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: GE2GL_FUZZ_PARALLEL must be a positive count" >&2; exit 2; }
 
 echo "== fuzz: building the harnesses in $build =="
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DGE2GL_FUZZ=ON \
@@ -63,14 +67,19 @@ maxLenOf() { case $1 in ppdmp_load) echo 1048576 ;; replay_* | texture) echo 262
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-found=0
-summary=()
-for h in "${harnesses[@]}"; do
-  bin=$build/fuzz/fuzz_$h
+# Runs one harness; leaves its summary line in logs/NAME.summary and, when it found something,
+# logs/NAME.found (the runs may go side by side).
+runHarness() {
+  local h=$1
+  local bin=$build/fuzz/fuzz_$h
+  local sum=$build/logs/$h.summary
+  mkdir -p "$build/logs"
+  rm -f "$sum" "$build/logs/$h.found"
   if [ ! -x "$bin" ]; then
-    summary+=("$(printf '%-12s not built (GL or the plugin API is off in this build)' "$h")")
-    continue
+    printf '%-12s not built (GL or the plugin API is off in this build)\n' "$h" >"$sum"
+    return 0
   fi
+  local corpus artifacts log rc execs rate last cov ft kept repro kind findings
   corpus=$build/corpus/$h
   artifacts=$build/findings/$h
   log=$build/logs/$h.log
@@ -89,14 +98,30 @@ for h in "${harnesses[@]}"; do
   kept=$(find "$corpus" -type f | wc -l)
   repro=$(grep -hoE '(Test unit written to|artifact_prefix.*; Test unit written to) [^ ]+' "$log" | awk '{print $NF}' | tail -1 || true)
   if [ "$rc" != 0 ] || [ -n "$repro" ]; then
-    found=1
+    touch "$build/logs/$h.found"
     kind=$(grep -oE 'ERROR: (AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer|libFuzzer)[^:]*: [a-z-]+|runtime error|deadly signal|timeout|out-of-memory' "$log" | head -1 || true)
     findings="FOUND ${kind:-exit code $rc}: ${repro:-see $log}"
   else
     findings="none"
   fi
-  summary+=("$(printf '%-12s executions %-9s exec/s %-6s cov %-6s ft %-7s corpus %-6s findings: %s' \
-    "$h" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$kept" "$findings")")
+  printf '%-12s executions %-9s exec/s %-6s cov %-6s ft %-7s corpus %-6s findings: %s\n' \
+    "$h" "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$kept" "$findings" >"$sum"
+}
+
+for h in "${harnesses[@]}"; do
+  if ((parallel > 1)); then
+    while (($(jobs -rp | wc -l) >= parallel)); do wait -n || true; done
+    runHarness "$h" &
+  else
+    runHarness "$h"
+  fi
+done
+wait
+found=0
+summary=()
+for h in "${harnesses[@]}"; do
+  summary+=("$(cat "$build/logs/$h.summary")")
+  [ ! -f "$build/logs/$h.found" ] || found=1
 done
 echo "== fuzz summary (${secs}s per harness; logs in $build/logs) =="
 printf '%s\n' "${summary[@]}"
