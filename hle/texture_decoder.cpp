@@ -225,18 +225,34 @@ u32 clutLookup(const GeState& st, u32 rawIndex, int level) {
 
 namespace {
 
-// The level's source bytes: a pointer straight into guest memory when the whole range is valid,
-// else a zero-filled copy of the readable prefix (ok = false).
-const u8* fetchSource(const Memory& mem, u32 addr, u32 bytes, std::vector<u8>& tmp, bool& ok) {
-    ok = true;
-    if (bytes == 0) return nullptr;
-    if (const u8* p = mem.ptr(addr, bytes)) return p;
-    ok = false;
-    tmp.assign(bytes, 0);
-    const u32 n = mem.validSize(addr, bytes);
-    if (n) mem.read(addr, tmp.data(), n);
-    return tmp.data();
-}
+// The level's source bytes [addr, addr + bytes), read piece by piece: straight from guest memory
+// where the piece lies in the readable prefix of the range, else a copy of the piece with the
+// bytes past that prefix zero (texels off the end of memory read as 0). A texture running off the
+// end of memory with a wide buffer width spans megabytes of which it reads a few rows: copying and
+// zeroing only the pieces keeps that cheap (the whole range zero-filled took most of a fuzzed
+// replay's time).
+class Source {
+public:
+    Source(const Memory& mem, u32 addr, u32 bytes)
+        : mem_(mem), addr_(addr), whole_(bytes && mem.ptr(addr, bytes) != nullptr), valid_(mem.validSize(addr, bytes)) {}
+    // True when every byte of the range is readable.
+    bool whole() const { return whole_; }
+    u32 valid() const { return valid_; }
+    // n bytes at offset off; valid until the next call.
+    const u8* at(u32 off, u32 n) {
+        if (u64(off) + n <= valid_) return mem_.ptr(addr_ + off, n);
+        tmp_.assign(n, 0);
+        if (off < valid_) mem_.read(addr_ + off, tmp_.data(), valid_ - off);
+        return tmp_.data();
+    }
+
+private:
+    const Memory& mem_;
+    u32 addr_;
+    bool whole_;
+    u32 valid_;
+    std::vector<u8> tmp_;
+};
 
 }  // namespace
 
@@ -249,18 +265,18 @@ bool decodeTextureLevel(const Memory& mem, const GeState& st, int level, std::ve
     if (bits == 0) return false;  // TPF 11–15: no defined format, texels read as 0
 
     const u32 bytes = textureLevelBytes(st, level);
-    std::vector<u8> tmp;
-    bool ok = true;
-    const u8* src = fetchSource(mem, li.addr, bytes, tmp, ok);
+    Source src(mem, li.addr, bytes);
+    const bool ok = bytes == 0 || src.whole();
 
     if (isDxt(fmt)) {
         // DXT is never swizzled (§6.3). Block (bx, by) at (by * bufw/4 + bx) * blockBytes (§6.2).
         const u32 blockBytes = fmt == GE_TFMT_DXT1 ? 8 : 16;
-        const u32 blocksPerRow = li.bufw / 4;
+        const u32 blocksPerRow = li.bufw / 4, rowBlocks = (li.width + 3) / 4;
         u32 texels[16];
         for (u32 by = 0; by < (li.height + 3) / 4; ++by) {
-            for (u32 bx = 0; bx < (li.width + 3) / 4; ++bx) {
-                const u8* block = src + size_t(by * blocksPerRow + bx) * blockBytes;
+            const u8* row = src.at(by * blocksPerRow * blockBytes, rowBlocks * blockBytes);
+            for (u32 bx = 0; bx < rowBlocks; ++bx) {
+                const u8* block = row + size_t(bx) * blockBytes;
                 switch (fmt) {
                 case GE_TFMT_DXT1: decodeDxt1Block(block, texels); break;
                 case GE_TFMT_DXT3: decodeDxt3Block(block, texels); break;
@@ -276,20 +292,43 @@ bool decodeTextureLevel(const Memory& mem, const GeState& st, int level, std::ve
 
     const u32 pitch = rowBytes(li.bufw, bits);
     if (st.TMODE_swizzle()) {
-        // Unswizzle block-wise into a linear copy of `cols` 16-byte columns per row (§6.3).
+        // Unswizzle block-wise into a linear copy of `cols` 16-byte columns per row (§6.3): block
+        // row b (8 texel rows) is the cols * 128 bytes from b * pitch * 8.
         const u32 cols = (rowBytes(li.width, bits) + 15) / 16;
         const u32 linPitch = cols * 16;
         const u32 blocksPerRow = pitch / 16;
         std::vector<u8> lin(size_t(linPitch) * li.height);
-        for (u32 y = 0; y < li.height; ++y) {
-            u8* dst = lin.data() + size_t(y) * linPitch;
-            const size_t rowBase = size_t((y / 8) * blocksPerRow) * 128 + (y % 8) * 16;
-            for (u32 c = 0; c < cols; ++c) std::memcpy(dst + 16 * c, src + rowBase + size_t(c) * 128, 16);
+        for (u32 b = 0; b * 8 < li.height; ++b) {
+            const u8* blockRow = src.at(b * blocksPerRow * 128, cols * 128);
+            for (u32 y = b * 8; y < std::min(li.height, b * 8 + 8); ++y) {
+                u8* dst = lin.data() + size_t(y) * linPitch;
+                for (u32 c = 0; c < cols; ++c) std::memcpy(dst + 16 * c, blockRow + size_t(c) * 128 + (y % 8) * 16, 16);
+            }
         }
         decodeLinear(st, level, fmt, lin.data(), linPitch, li.width, li.height, out.data());
         return ok;
     }
-    decodeLinear(st, level, fmt, src, pitch, li.width, li.height, out.data());
+    if (bytes == 0) return ok;
+    const u32 rb = rowBytes(li.width, bits);
+    for (u32 y = 0; y < li.height;) {
+        const u32 off = y * pitch;
+        if (u64(off) + rb <= src.valid()) {
+            // Rows wholly readable, decoded in one go straight from memory.
+            u32 y2 = y + 1;
+            while (y2 < li.height && u64(y2) * pitch + rb <= src.valid()) ++y2;
+            decodeLinear(st, level, fmt, src.at(off, (y2 - 1 - y) * pitch + rb), pitch, li.width, y2 - y, out.data() + size_t(y) * li.width);
+            y = y2;
+        } else if (off >= src.valid()) {
+            // This row and every later one read only zeros: decoded once, copied.
+            u32* row = out.data() + size_t(y) * li.width;
+            decodeLinear(st, level, fmt, src.at(off, rb), pitch, li.width, 1, row);
+            for (u32 r = y + 1; r < li.height; ++r) std::copy(row, row + li.width, out.data() + size_t(r) * li.width);
+            break;
+        } else {
+            decodeLinear(st, level, fmt, src.at(off, rb), pitch, li.width, 1, out.data() + size_t(y) * li.width);
+            ++y;
+        }
+    }
     return ok;
 }
 
@@ -297,13 +336,18 @@ u64 hashTextureLevel(const Memory& mem, const GeState& st, int level) {
     if (!validLevel(level)) return 0;
     const TextureLevelInfo li = textureLevelInfo(st, level);
     const u32 bytes = textureLevelBytes(st, level);
-    std::vector<u8> tmp;
-    bool ok = true;
-    const u8* src = fetchSource(mem, li.addr, bytes, tmp, ok);
+    // The readable prefix, then zeros for the rest of the range (as decodeTextureLevel reads it).
+    const u32 valid = mem.validSize(li.addr, bytes);
+    static constexpr u8 kZeros[4096] = {};
     XXH3_state_t* state = XXH3_createState();
     if (!state) return 0;
     XXH3_64bits_reset(state);
-    if (bytes) XXH3_64bits_update(state, src, bytes);
+    if (valid) XXH3_64bits_update(state, mem.ptr(li.addr, valid), valid);
+    for (u32 left = bytes - valid; left;) {
+        const u32 n = std::min<u32>(left, sizeof kZeros);
+        XXH3_64bits_update(state, kZeros, n);
+        left -= n;
+    }
     const GeTexFormat fmt = st.textureFormat();
     if (isClut(fmt)) {
         // Palette entries reachable from this format's raw index range with the current

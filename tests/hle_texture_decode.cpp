@@ -392,6 +392,55 @@ TEST(TextureDecode, UnreadableMemoryReadsAsZero) {
     EXPECT_FALSE(decodeTextureLevel(mem, st, 9, out));
 }
 
+// A texture running off the end of memory reads its readable prefix and zeros after it, decoded
+// piece by piece (only the rows it reads are copied): the same texels and hash as the same bytes,
+// with the zeros written out, placed where all of them are readable. Every layout: linear rows
+// (direct, partial and zero rows), CLUT rows, swizzled block rows and DXT block rows, off the end
+// of RAM and of a VRAM mirror, with a buffer width wider than the texture.
+TEST(TextureDecode, OffTheEndOfMemoryEqualsTheZeroFilledBytes) {
+    struct Case {
+        GeTexFormat fmt;
+        bool swizzle;
+        u32 bufw, wlog, hlog;
+    };
+    const Case cases[] = {{GE_TFMT_8888, false, 64, 5, 5}, {GE_TFMT_5650, false, 40, 5, 4},
+                          {GE_TFMT_CLUT8, false, 128, 6, 5}, {GE_TFMT_CLUT4, false, 256, 7, 5},
+                          {GE_TFMT_8888, true, 64, 5, 5},    {GE_TFMT_CLUT4, true, 128, 6, 5},
+                          {GE_TFMT_DXT1, false, 64, 5, 5},   {GE_TFMT_DXT5, false, 32, 4, 5}};
+    Memory mem;
+    const u32 ramEnd = Memory::kRamBase + mem.ramSize();
+    const u32 vramEnd = Memory::kVramBase + Memory::kVramSize;
+    for (const Case& c : cases) {
+        for (const u32 end : {ramEnd, vramEnd}) {
+            GeState st;
+            for (u32 i = 0; i < 256; ++i) writeLE32(st.clut + 4 * i, 0xFF000000u | (i * 0x010203u));
+            setClut(st, 3, 0, 0xFF, 0);
+            set(st, GE_CMD_TMODE, c.swizzle ? 1 : 0);
+            setTexture(st, c.fmt, kTex, c.bufw, c.wlog, c.hlog);
+            const u32 bytes = textureLevelBytes(st, 0);
+            // Readable: about a third of the range (whole rows, then a row cut in the middle), the
+            // texture address 16-byte aligned as TBP is.
+            const u32 readable = (bytes / 3 + 8) & ~15u;
+            const u32 addr = end - readable;
+            std::vector<u8> image(bytes, 0);
+            u32 seed = 12345;
+            for (u32 i = 0; i < readable; ++i) {
+                seed = seed * 1103515245u + 12345u;
+                image[i] = u8(seed >> 16);
+            }
+            for (u32 i = 0; i < readable; ++i) mem.write8(addr + i, image[i]);
+            for (u32 i = 0; i < bytes; ++i) mem.write8(kTex + i, image[i]);
+            std::vector<u32> inside, offEnd;
+            ASSERT_TRUE(decodeTextureLevel(mem, st, 0, inside));
+            const u64 hInside = hashTextureLevel(mem, st, 0);
+            setTexture(st, c.fmt, addr, c.bufw, c.wlog, c.hlog);
+            EXPECT_FALSE(decodeTextureLevel(mem, st, 0, offEnd));
+            EXPECT_EQ(offEnd, inside) << "format " << c.fmt << (c.swizzle ? " swizzled" : "") << " at " << std::hex << end;
+            EXPECT_EQ(hashTextureLevel(mem, st, 0), hInside) << "format " << c.fmt;
+        }
+    }
+}
+
 TEST(TextureDecode, HashCoversTexelsAndUsedPaletteEntries) {
     Memory mem;
     GeState st;
