@@ -7,6 +7,10 @@
 // equivalent to a fresh one for that input (generated programs are a pure function of their
 // keys). Re-uploading the zeros into every target instead (memoryWritten over all of VRAM) took
 // 60% of the harness's time. Without a GL context every input is a no-op (said once).
+//
+// The renderer keeps every program it compiles (a game uses a few hundred; fuzzed state words
+// ask for thousands), and llvmpipe's code for each stays resident: a long run grew by ~70 MB a
+// minute towards -rss_limit_mb. So the renderer is made anew once it has compiled kMaxPrograms.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -22,8 +26,19 @@ using namespace ge;
 
 namespace {
 
+constexpr u64 kMaxPrograms = 512;
+
 Memory* gMem = nullptr;
 Renderer* gGl = nullptr;
+
+Renderer* makeRenderer() {
+    gl::GlOptions go;
+    go.context = gl::ContextKind::OSMesa;
+    std::string err;
+    Renderer* r = gl::createGlRenderer(*gMem, go, err).release();
+    if (!r) std::fprintf(stderr, "fuzz_replay_gl: no GL context (%s): every input is skipped\n", err.c_str());
+    return r;
+}
 
 }  // namespace
 
@@ -31,11 +46,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
     // llvmpipe rasterises on the calling thread: one core per fuzzing job, reproducible timing.
     setenv("LP_NUM_THREADS", "0", 0);
     gMem = new Memory();
-    gl::GlOptions go;
-    go.context = gl::ContextKind::OSMesa;
-    std::string err;
-    gGl = gl::createGlRenderer(*gMem, go, err).release();
-    if (!gGl) std::fprintf(stderr, "fuzz_replay_gl: no GL context (%s): every input is skipped\n", err.c_str());
+    gGl = makeRenderer();
     return 0;
 }
 
@@ -46,6 +57,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string err;
     if (!fuzz::loadFuzzDump(data, size, d, err)) return 0;
     gMem->clear();
+    if (gl::glStats(*gGl).shaderCompiles >= kMaxPrograms) {
+        delete gGl;
+        gGl = makeRenderer();
+        if (!gGl) return 0;
+    }
     gl::glForgetGuestMemory(*gGl);
     fuzz::BoundedRenderer r(*gGl);
     r.reset();
