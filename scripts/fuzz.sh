@@ -69,6 +69,12 @@ maxLenOf() { case $1 in ppdmp_load) echo 1048576 ;; replay_* | texture) echo 262
 # half of -rss_limit_mb: at 2,048 that purge ran all the time (about 2,900 madvise calls a second,
 # each a TLB flush across cores; 40% of replay_gl's time in the kernel).
 rssLimitOf() { case $1 in replay_gl) echo 4096 ;; *) echo 2048 ;; esac; }
+# replay_gl's renderer keeps what it compiles (programs, llvmpipe code) from one input to the next,
+# so libFuzzer's per-input leak check (an input that frees less than it allocates is run again
+# under a full LeakSanitizer scan) fired on every new program and scanned a 1-2 GB heap each time:
+# replay_gl ran at 60 exec/s and slowed the harness beside it. LeakSanitizer still checks the whole
+# run when the process exits.
+extraFlagsOf() { case $1 in replay_gl) echo -detect_leaks=0 ;; esac; }
 
 # allocator_release_to_os_interval_ms=-1: ASan's allocator otherwise hands freed pages back to the
 # system several hundred times a second (madvise, then page faults to get them back), which cost
@@ -96,7 +102,7 @@ runHarness() {
   rc=0
   # shellcheck disable=SC2086
   nice -n 10 "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb="$(rssLimitOf "$h")" -max_len="$(maxLenOf "$h")" \
-    -dict="$(dictOf "$h")" -artifact_prefix="$artifacts/" -print_final_stats=1 -print_pcs=0 \
+    -dict="$(dictOf "$h")" $(extraFlagsOf "$h") -artifact_prefix="$artifacts/" -print_final_stats=1 -print_pcs=0 \
     ${GE2GL_FUZZ_ARGS:-} "$corpus" "$seeds/$(seedsOf "$h")" >"$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)
