@@ -65,9 +65,7 @@ dictOf() {
 }
 maxLenOf() { case $1 in ppdmp_load) echo 1048576 ;; replay_* | texture) echo 262144 ;; *) echo 65536 ;; esac; }
 # replay_gl keeps a GL context, llvmpipe's JIT code and its compiled programs for the whole run
-# (1.2-2 GB resident under ASan). libFuzzer purges the allocator every second once RSS passes
-# half of -rss_limit_mb: at 2,048 that purge ran all the time (about 2,900 madvise calls a second,
-# each a TLB flush across cores; 40% of replay_gl's time in the kernel).
+# (1.2-2.1 GB resident under ASan).
 rssLimitOf() { case $1 in replay_gl) echo 4096 ;; *) echo 2048 ;; esac; }
 # replay_gl's renderer keeps what it compiles (programs, llvmpipe code) from one input to the next,
 # so libFuzzer's per-input leak check (an input that frees less than it allocates is run again
@@ -101,7 +99,10 @@ runHarness() {
   echo "== fuzz: $h for ${secs}s =="
   rc=0
   # shellcheck disable=SC2086
-  nice -n 10 "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb="$(rssLimitOf "$h")" -max_len="$(maxLenOf "$h")" \
+  # -purge_allocator_interval=-1: libFuzzer otherwise purges the allocator every second once RSS
+  # passes half of -rss_limit_mb, and replay_gl lives there: about 2,900 madvise calls a second,
+  # each a TLB flush across cores, 20-40% of its time in the kernel.
+  nice -n 10 "$bin" -max_total_time="$secs" -timeout=10 -rss_limit_mb="$(rssLimitOf "$h")" -purge_allocator_interval=-1 -max_len="$(maxLenOf "$h")" \
     -dict="$(dictOf "$h")" $(extraFlagsOf "$h") -artifact_prefix="$artifacts/" -print_final_stats=1 -print_pcs=0 \
     ${GE2GL_FUZZ_ARGS:-} "$corpus" "$seeds/$(seedsOf "$h")" >"$log" 2>&1 || rc=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
