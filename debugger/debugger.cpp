@@ -217,7 +217,8 @@ bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<Dr
     std::vector<DecodedVertex> in;
     if (!decodeDrawVertices(mem, st, vtype, st.vertexAddr, st.indexAddr, count, in, &err)) return false;
     const VertexReader reader(mem, st, vtype);
-    const geo::TransformState ts = geo::makeTransformState(st, vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    geo::TransformState ts = geo::makeTransformState(st, vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    ts.sprite = ((word >> 16) & 7) == GE_PRIM_RECTANGLES;
     for (const DecodedVertex& v : in) {
         geo::ClipVertex cv;
         geo::transformVertex(ts, v, cv);

@@ -2,7 +2,8 @@
 // §13.1, §13.2, §16; ge-reference.md §3.4, §3.5, §3.9, §5.5, §8.1, §8.9, §8.10).
 //
 // Model → world → view (3×4 matrices) → clip (4×4), viewport to screen (Xs = SX·Xc/Wc + TX),
-// screen → drawing coordinates in 1/16 pixel with x16 = trunc(Xs·16 + 0.375) − OFFSETX (§8.1),
+// screen → drawing coordinates in 1/16 pixel with x16 = trunc(Xs·16 + 0.375) − OFFSETX (§8.1;
+// transform-mode sprites: ceil(Xs·16) − OFFSETX, Xs from float24 arithmetic, measured on a PSP),
 // screen Z to 16 bits; per-vertex fog factor, lighting and texture-coordinate generation.
 // Through mode skips all of it: positions are drawing coordinates, texture coordinates texels.
 #pragma once
@@ -39,6 +40,10 @@ struct TransformState {
     // Transform-mode rectangles drawn as two triangles: texture projection whose Q can vary over
     // the rectangle (see makeTransformState).
     bool rectAsTriangles = false;
+    // The draw is a transform-mode RECTANGLES draw: its vertices reach the screen by the PSP's
+    // sprite rule (projectToScreen; docs/conformance.md "Transform-mode sprite positions"). Set by
+    // the caller, which knows the primitive; makeTransformState leaves it false.
+    bool sprite = false;
     float su = 1, sv = 1, tu = 0, tv = 0;
     float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 2^n, unclamped (through-mode texel coordinates; texture_size.h)
     bool fog = false;

@@ -649,7 +649,8 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
         I.stripOdd = false;
     }
     VertexReader probe(I.mem, st, p.vtype);
-    const geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    ts.sprite = p.prim == GE_PRIM_RECTANGLES;
     // The still-open vertices of the previous PRIM come first.
     I.cverts.assign(I.pending.begin(), I.pending.end());
     std::vector<u32>& seq = I.seq;

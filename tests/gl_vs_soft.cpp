@@ -13,6 +13,7 @@
 #include "tests/gl_fixture.h"
 #include "tests/near_clip_scene.h"
 #include "tests/reference_quirk_scenes.h"
+#include "tests/sprite_position_scene.h"
 #include "tests/wide_texture_scene.h"
 
 namespace ge::gltest {
@@ -385,6 +386,15 @@ TEST(GlVsSoft, ImmediateSecondaryColourOnlyWithSeparateSpecularInTransformMode) 
         EXPECT_EQ(rgb(8, 0), 0u);
     };
     checkEveryBackend(immediateSecondaryScene, check);
+}
+
+// Transform-mode sprites reach the screen by the PSP's rule on every backend
+// (tests/sprite_position_scene.h; GL takes the CPU vertex path for rectangles in both modes).
+TEST(GlVsSoft, TransformModeSpritesRoundAsThePspDoes) {
+    checkEveryBackend(testscene::spritePositionScene, [](const std::vector<u8>& vram) {
+        testscene::checkSpritePositionScene(
+            [&](int x, int y) { return readLE32(&vram[(size_t(y) * 512 + size_t(x)) * 4]) & 0xFFFFFFu; });
+    });
 }
 
 // A draw whose vertex format has no texture coordinates takes the vertex unit's last ones

@@ -16,6 +16,7 @@
 #include "softmodel/soft_renderer.h"
 #include "tests/near_clip_scene.h"
 #include "tests/reference_quirk_scenes.h"
+#include "tests/sprite_position_scene.h"
 
 using namespace ge;
 using namespace ge::soft;
@@ -242,6 +243,13 @@ TEST(SoftRender, NearClippingWhateverCleSays) {
         for (const auto& p : testscene::kNearClipProbes)
             EXPECT_EQ(r.rgb(p.x, p.y), p.covered ? 0xFFFFFFu : 0u) << p.x << "," << p.y;
     }
+}
+
+// Transform-mode sprites reach the screen by the PSP's rule (tests/sprite_position_scene.h), on the
+// path a recorded dump takes.
+TEST(SoftRender, TransformModeSpritesRoundAsThePspDoes) {
+    NearClipRender r(testscene::spritePositionScene);
+    testscene::checkSpritePositionScene([&](int x, int y) { return r.rgb(x, y); });
 }
 
 // Fan triangles are clipped in the reference's slot order (centre, odd, even vertex): the second

@@ -438,6 +438,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
     }
     VertexReader reader(mem, st, p.vtype);
     ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    ts_.sprite = p.prim == GE_PRIM_RECTANGLES;
     // The still-open vertices of the previous PRIM come first (type 7, ref §3.2).
     cverts_.assign(pending_.begin(), pending_.end());
     std::vector<u32> indices;

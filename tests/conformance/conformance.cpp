@@ -123,8 +123,8 @@ int floorOf(const std::string& test, const std::string& backend) {
         {{"clut/address", "gl"}, 23},
         {{"commands/light", "soft"}, 163},  // of 201: attenuation/exponent precision (docs/conformance.md)
         {{"commands/light", "gl"}, 163},
-        {{"depth/precision", "soft"}, 99},  // of 117: transform-mode Z rounding (docs/conformance.md)
-        {{"depth/precision", "gl"}, 99},
+        {{"depth/precision", "soft"}, 113},  // of 117: Z with the viewport centre 32768 (docs/conformance.md)
+        {{"depth/precision", "gl"}, 113},
         {{"texfunc/add", "soft"}, 274},      {{"texfunc/add", "gl"}, 274},
         {{"texfunc/blend", "soft"}, 785},    {{"texfunc/blend", "gl"}, 785},
         {{"texfunc/decal", "soft"}, 272},    {{"texfunc/decal", "gl"}, 272},
@@ -144,15 +144,14 @@ int floorOf(const std::string& test, const std::string& backend) {
         {{"clut/offset", "soft"}, 170},      {{"clut/offset", "gl"}, 170},
         {{"textures/mipmap", "soft"}, 308},  {{"textures/mipmap", "gl"}, 308},
         {{"textures/rotate", "soft"}, 96},   {{"textures/rotate", "gl"}, 96},
-        // of 541: transform-mode sprites sample 1/64 texel early on a PSP (docs/conformance.md)
-        {{"filtering/nearest", "soft"}, 280}, {{"filtering/nearest", "gl"}, 280},
-        {{"filtering/linear", "soft"}, 221},  {{"filtering/linear", "gl"}, 221},
-        // of 368: bilinear position rounding, a far edge on a pixel centre, OFFSETX/Y below zero
-        // (the reference renderer's rules kept where they disagree with these values: docs/conformance.md)
+        {{"filtering/nearest", "soft"}, 541}, {{"filtering/nearest", "gl"}, 541},
+        {{"filtering/linear", "soft"}, 541},  {{"filtering/linear", "gl"}, 541},
+        // of 368: bilinear position rounding and a far edge on a pixel centre (the reference
+        // renderer's rules kept where they disagree with these values: docs/conformance.md)
         {{"filtering/precisionlinear2d", "soft"}, 318},  {{"filtering/precisionlinear2d", "gl"}, 318},
-        {{"filtering/precisionlinear3d", "soft"}, 258},  {{"filtering/precisionlinear3d", "gl"}, 258},
+        {{"filtering/precisionlinear3d", "soft"}, 318},  {{"filtering/precisionlinear3d", "gl"}, 318},
         {{"filtering/precisionnearest2d", "soft"}, 366}, {{"filtering/precisionnearest2d", "gl"}, 366},
-        {{"filtering/precisionnearest3d", "soft"}, 360}, {{"filtering/precisionnearest3d", "gl"}, 360},
+        {{"filtering/precisionnearest3d", "soft"}, 366}, {{"filtering/precisionnearest3d", "gl"}, 366},
         {{"commands/blocktransfer", "soft"}, 23}, {{"commands/blocktransfer", "gl"}, 23},
         {{"rendertarget/depal", "soft"}, 272},   {{"rendertarget/depal", "gl"}, 272},
         // texmtx: one-step texel precision and attributes a vertex format leaves out (docs/conformance.md)
@@ -187,9 +186,7 @@ int floorOf(const std::string& test, const std::string& backend) {
         {{"primitives/spline", "soft"}, 181},         {{"primitives/spline", "gl"}, 181},
         {{"filtering/mipmaplinear", "soft"}, 530}, {{"filtering/mipmaplinear", "gl"}, 530},
         {{"rendertarget/copy", "soft"}, 2720},     {{"rendertarget/copy", "gl"}, 2720},
-        // of 1024: a transform-mode sprite's top edge 1/256 pixel below a pixel boundary
-        // (docs/conformance.md)
-        {{"textures/size", "soft"}, 1002}, {{"textures/size", "gl"}, 1002},
+        {{"textures/size", "soft"}, 1024}, {{"textures/size", "gl"}, 1024},
     };
     auto it = kFloors.find({test, backend});
     return it == kFloors.end() ? 0 : it->second;
