@@ -461,9 +461,13 @@ bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const Screen
     // that pixel only when it falls on the odd pixel of a pair counted from the first one.
     const int px1 = std::max<int>(int(ceilDiv(xl - 8, 16)), rp.clipX1);
     const int py1 = std::max<int>(int(ceilDiv(yt - 8, 16)), rp.clipY1);
-    auto lastCovered = [](int first, int far, int clip) {
+    // A RECTANGLES draw leaves the pixel whose centre is on its far edge out, odd or not, as a PSP
+    // does in either mode (pspautotests gpu/filtering/precision*2d and *3d: a 2x2 sprite from
+    // −8/16 to 1.5 draws pixel 0 only; docs/conformance.md "Sprites"). Strip and fan quads that
+    // the reference draws as rectangles (assembly.h; triangles on the GE) keep its walk.
+    auto lastCovered = [&rp](int first, int far, int clip) {
         int last = int(ceilDiv(far - 8, 16)) - 1;  // centre strictly before the far edge
-        if (((far - 8) & 15) == 0 && ((last + 1 - first) & 1) == 1) ++last;  // odd pixel on the edge
+        if (!rp.sprite && ((far - 8) & 15) == 0 && ((last + 1 - first) & 1) == 1) ++last;  // odd pixel on the edge
         return std::min(last, clip);
     };
     const int px2 = lastCovered(px1, xr, rp.clipX2);

@@ -55,6 +55,9 @@ struct RasterParams {
     bool needW = false;      // TLEVEL mode 2: per-pixel clip W
     bool fog = false;        // convert the interpolated fog factor (else fog = 255)
     bool through = false;    // through mode: texture coordinates screen-linear (no 1/w weighting)
+    // A RECTANGLES draw (TransformState::sprite), not a strip or fan quad drawn as a rectangle
+    // (assembly.h): the pixel on its far edge is left out, as on a PSP (rectangleSetup).
+    bool sprite = false;
     float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 

@@ -40,9 +40,10 @@ struct TransformState {
     // Transform-mode rectangles drawn as two triangles: texture projection whose Q can vary over
     // the rectangle (see makeTransformState).
     bool rectAsTriangles = false;
-    // The draw is a transform-mode RECTANGLES draw: its vertices reach the screen by the PSP's
-    // sprite rule (projectToScreen; docs/conformance.md "Transform-mode sprite positions"). Set by
-    // the caller, which knows the primitive; makeTransformState leaves it false.
+    // The draw is a RECTANGLES draw (a sprite): in transform mode its vertices reach the screen by
+    // the PSP's sprite rule (projectToScreen; docs/conformance.md "Sprites"); through-mode positions
+    // are drawing coordinates as given. Set by the caller, which knows the primitive;
+    // makeTransformState leaves it false.
     bool sprite = false;
     float su = 1, sv = 1, tu = 0, tv = 0;
     float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 2^n, unclamped (through-mode texel coordinates; texture_size.h)

@@ -665,7 +665,8 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
     full.insert(full.end(), seq.begin(), seq.end());
 
     const bool textured = st.TME_on();
-    const geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
+    geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
+    rp.sprite = ts.sprite;
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
     I.rectDetect = geo::RectDetect::fromState(st, ts.through, textured, I.pending.empty());
     I.assemble(p.prim, full, true);

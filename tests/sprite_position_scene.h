@@ -1,15 +1,15 @@
-// Transform-mode sprites (RECTANGLES) reach the screen by the PSP's own rule, not the reference
-// renderer's (geometry/transform.cpp projectToScreen; docs/conformance.md "Transform-mode sprite
-// positions"): the viewport arithmetic in float24, the screen position rounded up to the next 1/16
-// pixel before OFFSETX/Y is taken off. Each case below is a value a PSP printed in pspautotests
-// gpu/filtering/nearest, linear, textures/size or depth/precision; the reference renderer's rule
-// gives the other
-// value named beside it. Shared by the software-model (through a recorded dump) and GL tests.
+// Sprites (RECTANGLES) as a PSP draws them, not as the reference renderer does (docs/conformance.md
+// "Sprites"): in transform mode the viewport arithmetic is float24 and the screen position rounds up
+// to the next 1/16 pixel before OFFSETX/Y is taken off (geometry/transform.cpp projectToScreen); in
+// either mode the pixel whose centre is on the far edge is left out (geometry/raster.cpp
+// rectangleSetup). Each case below is a value a PSP printed in pspautotests gpu/filtering/nearest,
+// linear, precision*, textures/size or depth/precision; the reference renderer's rule gives the
+// other value named beside it. Shared by the software-model (through a recorded dump) and GL tests.
 //
-// Every case is the filtering tests' sprite: 2x2 pixels from clip (−1, 1) to (−1 + 2/240,
+// Cases 0-4 are the filtering tests' sprite: 2x2 pixels from clip (−1, 1) to (−1 + 2/240,
 // 1 − 2/136) with SX = 240, SY = −136 and the viewport centre at 2048, over a 2x2 8888 texture with
 // REPLACE; the screen offset moves each case to its own place (8 pixels apart along row 0) and,
-// for one case, by a sixteenth of a pixel more.
+// for one case, by a sixteenth of a pixel more. Case 5 is a through-mode sprite.
 #pragma once
 #include <functional>
 
@@ -82,6 +82,18 @@ inline void spritePositionScene(ListBuilder& b) {
     b.depthFunc(7);  // GEQUAL (manual §8.7)
     sprite(4, columnTex, false, 0, 0, 1.0f, 0, float(0x6DCC) / 32768.0f);
     b.enable(GE_CMD_ZTE, false);
+    // 5: a through-mode sprite from x 40 to 41.5: the far edge is pixel 41's centre and the PSP
+    // leaves it out (filtering/precisionnearest2d "Pos X offset 8": a sprite from −0.5 to 1.5
+    // draws pixel 0 only); the reference's 2x2 walk draws it as the odd pixel of the pair.
+    {
+        constexpr u32 through = vt::TC_F | vt::COL_8888 | vt::POS_F | vt::THROUGH;
+        BuildVertex v[2];
+        v[0].x = 40.0f, v[0].y = 0.0f, v[0].u = 0.0f, v[0].v = 0.0f;
+        v[1].x = 41.5f, v[1].y = 2.0f, v[1].u = 1.0f, v[1].v = 2.0f;
+        v[0].color = v[1].color = 0xFFFFFFFFu;
+        const auto bytes = packVertices(through, v, 2);
+        b.drawArrayData(GE_PRIM_RECTANGLES, through, 2, nullptr, bytes.data());
+    }
 }
 
 // Checks the scene's pixels; `rgb(x, y)` reads the 512-stride 8888 frame's RGB.
@@ -91,6 +103,8 @@ inline void checkSpritePositionScene(const std::function<u32(int, int)>& rgb) {
     EXPECT_EQ(rgb(16, 0), 0x001FDFu) << "offset + 3/16: 2/16 green (reference renderer: 0x002fcf)";
     EXPECT_EQ(rgb(24, 0), 0x0000FFu) << "top edge 1/256 below row 0: row 0 (reference renderer: row 1, 0xff0000)";
     EXPECT_EQ(rgb(32, 0), 0x0000FFu) << "Z stored as 0x1234 passes GEQUAL 0x1234 (reference renderer: 0x1233, not drawn)";
+    EXPECT_EQ(rgb(40, 1), 0x0000FFu) << "through-mode sprite from x 40: pixel 40";
+    EXPECT_EQ(rgb(41, 1), 0u) << "far edge 41.5 on pixel 41's centre: left out (reference renderer: drawn)";
     EXPECT_EQ(rgb(4, 0), 0u) << "nothing between the cases";
 }
 

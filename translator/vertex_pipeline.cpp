@@ -119,6 +119,7 @@ geo::RasterParams VertexPipeline::rasterParams() const {
     rp.needW = vs_.texture && st_->TLEVEL_mode() == 2;
     rp.fog = vs_.fog;
     rp.through = ts_.through;
+    rp.sprite = ts_.sprite;
     rp.texW0 = float(geo::texCoordWidth(*st_, 0));  // unclamped 2^n (geometry/texture_size.h)
     rp.texH0 = float(geo::texCoordHeight(*st_, 0));
     return rp;
