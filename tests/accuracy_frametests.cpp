@@ -60,7 +60,7 @@ void runAccuracy(const std::string& backend, const Floors& floors) {
 }
 
 // 16 within 0.1, not 19: the one rule measured on a PSP that moves a frametest. Transform-mode
-// sprites reach the screen from float24 clip X/Y, rounded up to the next 1/16 pixel
+// sprites reach the screen through float24 arithmetic, rounded up to the next 1/16 pixel
 // (geometry/transform.cpp projectToScreen; docs/conformance.md "Sprites":
 // pspautotests gpu/filtering/nearest and linear, all 1,082 values, textures/size and the
 // precision*3d tests). The references are PPSSPP's, which rounds as triangles do; the float24 cut
