@@ -197,12 +197,12 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     // triangles (10 of the 20 game dumps within MSE 0.1 with this rule, 7 without). The value is
     // limited first so wild (dropped or exempt) vertices convert safely; ±2^20 sixteenths is far
     // off screen.
-    auto to16 = [](float f, int off) {
-        float t = f * 16.0f + 0.375f - float(off);
-        if (!(t > -1048576.0f)) t = -1048576.0f;  // also NaN
-        if (t > 1048576.0f) t = 1048576.0f;
+    auto limit16 = [](double t) {
+        if (!(t > -1048576.0)) t = -1048576.0;  // also NaN
+        if (t > 1048576.0) t = 1048576.0;
         return int(t);
     };
+    auto to16 = [&](float f, int off) { return limit16(f * 16.0f + 0.375f - float(off)); };  // in float
     // Transform-mode sprites: the screen position rounds up to the next 1/16 pixel, in screen
     // space, and the offset is taken off the result (measured on a PSP: gpu/textures/size's top
     // edge at 1920.0039 samples as from 1920.0625; gpu/filtering/precision*3d's corner at screen
@@ -210,12 +210,8 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     // −(i − 1)/16). Triangles, lines and points keep the reference renderer's rule above: applied
     // to every primitive, this rule leaves 1 of the 20 frametests within MSE 0.1 (19 without) and
     // passes no further hardware checkpoint (docs/conformance.md).
-    auto spriteTo16 = [](float f, int off) {
-        double t = std::ceil(double(f) * 16.0) - off;  // exact: f·16 is a float times a power of two
-        if (!(t > -1048576.0)) t = -1048576.0;          // also NaN
-        if (t > 1048576.0) t = 1048576.0;
-        return int(t);
-    };
+    // Exact in double: f·16 is a float times a power of two.
+    auto spriteTo16 = [&](float f, int off) { return limit16(std::ceil(double(f) * 16.0) - off); };
     v.sv.x = ts.sprite ? spriteTo16(xs, ts.offX16) : to16(xs, ts.offX16);
     v.sv.y = ts.sprite ? spriteTo16(ys, ts.offY16) : to16(ys, ts.offY16);
     v.sv.z = depthToInt(zs);

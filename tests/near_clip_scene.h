@@ -11,18 +11,13 @@
 // (240, 380.8) and the triangle would cover rows 204 and below instead.
 #pragma once
 #include "hle/list_builder.h"
+#include "tests/screen_frame.h"
 
 namespace ge::testscene {
 
 // Frame, identity world/view, the projection above, CLE, no culling.
 inline void nearClipFrame(ListBuilder& b, bool cle) {
-    b.drawBuffer(GE_FORMAT_8888, 0, 512);
-    b.depthBuffer(0x88000, 512);
-    b.scissor(0, 0, 480, 272);
-    b.region(0, 0, 480, 272);
-    b.offset(2048 - 240, 2048 - 136);
-    b.viewport(2048, 2048, 480, 272);
-    b.depthRange(65535, 0);
+    screenFrame(b);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
     const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     b.setMatrix(GeMatrix::World, id);

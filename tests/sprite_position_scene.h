@@ -16,17 +16,12 @@
 #include <gtest/gtest.h>
 
 #include "hle/list_builder.h"
+#include "tests/screen_frame.h"
 
 namespace ge::testscene {
 
 inline void spritePositionScene(ListBuilder& b) {
-    b.drawBuffer(GE_FORMAT_8888, 0, 512);
-    b.depthBuffer(0x88000, 512);
-    b.scissor(0, 0, 480, 272);
-    b.region(0, 0, 480, 272);
-    b.offset(2048 - 240, 2048 - 136);
-    b.viewport(2048, 2048, 480, 272);
-    b.depthRange(65535, 0);
+    screenFrame(b);
     b.cmdf(GE_CMD_SZ, -32767.5f);  // depth/precision's viewport Z (sceGuDepthRange's is −32768, 32767)
     b.cmdf(GE_CMD_TZ, 32767.5f);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0x1234);

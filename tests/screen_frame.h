@@ -1,0 +1,20 @@
+// The full PSP screen as the scene headers draw it: a 512-stride 8888 frame at VRAM offset 0
+// (depth at 0x88000), scissor and region over 480x272, the screen offset and viewport that map
+// clip (−1..1, 1..−1) onto those pixels, and sceGuDepthRange(65535, 0). Shared by
+// tests/near_clip_scene.h and tests/sprite_position_scene.h.
+#pragma once
+#include "hle/list_builder.h"
+
+namespace ge::testscene {
+
+inline void screenFrame(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 512);
+    b.depthBuffer(0x88000, 512);
+    b.scissor(0, 0, 480, 272);
+    b.region(0, 0, 480, 272);
+    b.offset(2048 - 240, 2048 - 136);
+    b.viewport(2048, 2048, 480, 272);
+    b.depthRange(65535, 0);
+}
+
+}  // namespace ge::testscene
