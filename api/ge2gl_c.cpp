@@ -411,6 +411,28 @@ ge2gl_status ge2gl_get_cmd(ge2gl_context* h, uint32_t op, uint32_t* out_word) {
     });
 }
 
+ge2gl_status ge2gl_get_registers(ge2gl_context* h, uint32_t out[256]) {
+    return guarded(h, [&]() -> ge2gl_status {
+        Call c(h);
+        if (!out) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out is NULL");
+        for (u32 op = 0; op < 0xFF; ++op) {
+            s32 r = h->sce->getCmd(op, &out[op]);
+            if (r < 0) return c.sceResult(r, nullptr);
+        }
+        out[0xFF] = 0;
+        return GE2GL_OK;
+    });
+}
+
+ge2gl_status ge2gl_get_stack(ge2gl_context* h, int32_t index, uint32_t out[8], int32_t* out_depth) {
+    return guarded(h, [&]() -> ge2gl_status {
+        Call c(h);
+        s32 r = h->sce->getStack(index, out);
+        if (r >= 0 && out_depth) *out_depth = r;
+        return c.sceResult(r, nullptr);
+    });
+}
+
 ge2gl_status ge2gl_get_matrix(ge2gl_context* h, int32_t type, uint32_t out[16], int32_t* out_count) {
     return guarded(h, [&]() -> ge2gl_status {
         Call c(h);

@@ -565,6 +565,22 @@ s32 SceGe::getMtx(int type, u32 out[16], int* count) const {
     return sce::kOk;
 }
 
+s32 SceGe::getStack(s32 index, u32 out[8]) const {
+    // pspautotests gpu/ge/get: 0 outside a list for any index; inside a SIGNAL CALL handler the
+    // depth for index -1 and 0 and an invalid index error for 255.
+    if (active_ < 0) return 0;
+    const auto& frames = engine_.list().signalStack;
+    const s32 depth = s32(frames.size());
+    if (index >= depth) return fail(sce::kErrorInvalidIndex, fmt("stack index %d is not below the depth %d", index, depth));
+    if (index >= 0 && out) {
+        for (int k = 0; k < 8; ++k) out[k] = 0;
+        out[1] = frames[size_t(index)].pc;
+        out[2] = frames[size_t(index)].offset;
+        out[7] = frames[size_t(index)].base;
+    }
+    return depth;
+}
+
 s32 SceGe::edramSetAddrTranslation(u32 value) {
     const u32 prev = engine_.memory().edramTranslation();
     if (!engine_.memory().setEdramTranslation(value))

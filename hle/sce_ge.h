@@ -154,6 +154,11 @@ public:
     s32 getCmd(u32 op, u32* out) const;
     // sceGeGetMtx: types 0–7 bones, 8 world, 9 view, 10 proj (16 words), 11 tgen; float24 words.
     s32 getMtx(int type, u32 out[16], int* count) const;
+    // sceGeGetStack: the SIGNAL CALL depth of the list the GE is in (0 without one); for
+    // 0 <= index < depth entry `index` (0 = the first call) goes to out[0..7] when out is given:
+    // word 1 the return address, 2 its OFFSET, 7 its BASE register word, the rest 0 (the words PPSSPP's
+    // GPUCommon::GetStack fills; the PSP's other words are unknown). index >= depth: invalid index.
+    s32 getStack(s32 index, u32 out[8]) const;
     // Returns the previous translation value, or kErrorInvalidValue.
     s32 edramSetAddrTranslation(u32 value);
     static u32 edramGetAddr() { return Memory::kVramBase; }

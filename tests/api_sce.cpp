@@ -67,6 +67,37 @@ TEST(ApiBasics, VersionAndCreation) {
     ge2gl_destroy(nullptr);
 }
 
+// ge2gl_get_registers is ge2gl_get_cmd for every opcode at once (a host mirroring the register
+// file refreshes it with one call): the same words, including the matrix ports and number
+// registers that read back specially, and out[0xFF] = 0.
+TEST(ApiBasics, GetRegistersEqualsGetCmdForEveryOpcode) {
+    Host host;
+    ASSERT_EQ(host.status, GE2GL_OK);
+    ListWriter L(host, L0);
+    L.put(TEC, 0x123456);
+    L.put(0x3A, 2);         // WORLDN = 2
+    L.put(0x3B, 0x3F8000);  // WORLDD: 1.0 into world[2], index now 3
+    L.put(MDC, 0xABCDEF);
+    L.finish(0);
+    int32_t id = -1;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, L0, 0, -1, nullptr, &id), GE2GL_OK);
+    ASSERT_EQ(ge2gl_draw_sync(host.h, GE2GL_SYNC_WAIT, nullptr), GE2GL_OK);
+    uint32_t all[256];
+    std::memset(all, 0xEE, sizeof all);
+    ASSERT_EQ(ge2gl_get_registers(host.h, all), GE2GL_OK);
+    for (uint32_t op = 0; op < 0xFF; ++op) {
+        uint32_t w = 0;
+        ASSERT_EQ(ge2gl_get_cmd(host.h, op, &w), GE2GL_OK);
+        EXPECT_EQ(all[op], w) << "opcode 0x" << std::hex << op;
+    }
+    EXPECT_EQ(all[0xFF], 0u);
+    EXPECT_EQ(all[TEC], word(TEC, 0x123456));
+    EXPECT_EQ(all[0x3A], word(0x3A, 3));  // the upload index, as sceGeGetCmd reads it
+    EXPECT_EQ(all[0x3B], word(0x3B, 0));  // a matrix data port reads back as its bare opcode
+    EXPECT_EQ(ge2gl_get_registers(host.h, nullptr), GE2GL_ERR_INVALID_ARGUMENT);
+    EXPECT_EQ(ge2gl_get_registers(nullptr, all), GE2GL_ERR_INVALID_HANDLE);
+}
+
 // The GE stops exactly at the stall address and continues word by word as it moves (manual §20.5).
 TEST(ApiStall, PausesAndResumesAtTheExactAddress) {
     Host host;
@@ -606,6 +637,53 @@ TEST(ApiSignal, SignalCallStackDepthFollowsTheListArgs) {
     EXPECT_EQ(host.cmd(TEC), word(TEC, 3));
     args.num_stacks = 256;
     EXPECT_EQ(ge2gl_list_enqueue(host.h, L0, 0, -1, &args, &id), GE2GL_SCE_ERROR_INVALID_SIZE);
+}
+
+// sceGeGetStack as pspautotests gpu/ge/get reads it on a PSP: 0 for any index outside a list; in
+// a signal handler one SIGNAL CALL deep, depth 1 for index -1 and 0 (entry 0 written: the return
+// address, OFFSET and BASE of the call), an invalid index error for 255.
+TEST(ApiSignal, GetStackReportsTheSignalCallDepthInsideAHandler) {
+    Host host;
+    int32_t depth = -1;
+    uint32_t frame[8];
+    ASSERT_EQ(ge2gl_get_stack(host.h, 255, frame, &depth), GE2GL_OK);
+    EXPECT_EQ(depth, 0);
+    const uint32_t sub = 0x08180000;
+    ListWriter S(host, sub);
+    S.put(BASE, 0x0A0000);
+    S.signal(0x01, 7);  // HANDLER_SUSPEND: the callback runs one call deep
+    S.signal(0x12, 0);  // RET
+    ListWriter L(host, L0);
+    L.put(BASE, 0x080000);
+    L.put(OFFSET, 0x000100);
+    const uint32_t callAt = L.signalAddr(0x11, sub);
+    L.finish();
+    struct Seen { ge2gl_status minus1 = 1, zero = 1, big = 1, nullOut = 1; int32_t d1 = -1, d0 = -1, dn = -1; uint32_t f[8] = {}; } seen;
+    host.onSignal = [&](const ge2gl_interrupt&) {
+        seen.minus1 = ge2gl_get_stack(host.h, -1, nullptr, &seen.d1);
+        std::memset(seen.f, 0xCC, sizeof seen.f);
+        seen.zero = ge2gl_get_stack(host.h, 0, seen.f, &seen.d0);
+        seen.big = ge2gl_get_stack(host.h, 255, nullptr, nullptr);
+        seen.nullOut = ge2gl_get_stack(host.h, 0, nullptr, &seen.dn);
+    };
+    int32_t id;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, L0, 0, -1, nullptr, &id), GE2GL_OK);
+    host.run();
+    EXPECT_EQ(seen.minus1, GE2GL_OK);
+    EXPECT_EQ(seen.d1, 1);
+    EXPECT_EQ(seen.zero, GE2GL_OK);
+    EXPECT_EQ(seen.d0, 1);
+    EXPECT_EQ(seen.big, GE2GL_SCE_ERROR_INVALID_INDEX);
+    EXPECT_EQ(seen.nullOut, GE2GL_OK);
+    EXPECT_EQ(seen.dn, 1);
+    EXPECT_EQ(seen.f[0], 0u);
+    EXPECT_EQ(seen.f[1], callAt + 8);  // returns past the SIGNAL + END pair
+    EXPECT_EQ(seen.f[2], 0x100u << 8);           // OFFSET holds its argument shifted by 8
+    EXPECT_EQ(seen.f[7], word(BASE, 0x080000));  // the BASE register word, as PPSSPP keeps it
+    EXPECT_EQ(seen.f[3], 0u);
+    ASSERT_EQ(host.only("F").size(), 1u);
+    EXPECT_EQ(ge2gl_get_stack(host.h, 0, nullptr, &depth), GE2GL_OK);
+    EXPECT_EQ(depth, 0);
 }
 
 TEST(ApiSignal, CmdJumpCallRetStillWorkThroughTheQueue) {

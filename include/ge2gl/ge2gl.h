@@ -59,7 +59,7 @@ extern "C" {
 /* API version: major in bits 31..16, minor in 15..0. A host built against major M works with any
  * library of major M and a minor at least its own. */
 #define GE2GL_API_VERSION_MAJOR 1
-#define GE2GL_API_VERSION_MINOR 3
+#define GE2GL_API_VERSION_MINOR 4
 #define GE2GL_API_VERSION ((uint32_t)((GE2GL_API_VERSION_MAJOR << 16) | GE2GL_API_VERSION_MINOR))
 
 typedef struct ge2gl_context ge2gl_context; /* opaque handle */
@@ -273,6 +273,15 @@ GE2GL_API ge2gl_status ge2gl_save_context_at(ge2gl_context* h, uint32_t guest_ad
 GE2GL_API ge2gl_status ge2gl_restore_context_at(ge2gl_context* h, uint32_t guest_addr);
 /* sceGeGetCmd: the register word of opcode op (0-0xFE). */
 GE2GL_API ge2gl_status ge2gl_get_cmd(ge2gl_context* h, uint32_t op, uint32_t* out_word);
+/* API 1.4: every register word at once, out[op] as ge2gl_get_cmd gives it for op 0-0xFE (out[0xFF]
+   is 0): one call for a host that keeps its own copy of the register file (an emulator whose
+   other parts read its GE state struct) and refreshes it after each run. */
+GE2GL_API ge2gl_status ge2gl_get_registers(ge2gl_context* h, uint32_t out[256]);
+/* API 1.4: sceGeGetStack. *out_depth (may be NULL) gets the SIGNAL CALL depth of the list the GE
+   is in (0 when it is in none); for 0 <= index < depth, entry index is written to out (8 words;
+   may be NULL): word 1 the return address, 2 its OFFSET, 7 its BASE register word, the others 0. An index at
+   or past the depth inside a list gives GE2GL_SCE_ERROR_INVALID_INDEX. */
+GE2GL_API ge2gl_status ge2gl_get_stack(ge2gl_context* h, int32_t index, uint32_t out[8], int32_t* out_depth);
 /* sceGeGetMtx: type 0-7 bones, 8 world, 9 view, 10 projection (16 words), 11 texgen; float24
    words (bits 31..8 of the IEEE value, shifted down). out must hold 16 words. */
 GE2GL_API ge2gl_status ge2gl_get_matrix(ge2gl_context* h, int32_t type, uint32_t out[16], int32_t* out_count);

@@ -137,6 +137,12 @@ public:
     Result<uint32_t> getCmd(uint32_t op) {
         return call<uint32_t>([&](uint32_t* v) { return ge2gl_get_cmd(h_, op, v); });
     }
+    Result<std::array<uint32_t, 256>> getRegisters() {
+        return call<std::array<uint32_t, 256>>([&](std::array<uint32_t, 256>* v) { return ge2gl_get_registers(h_, v->data()); });
+    }
+    Result<int32_t> getStack(int32_t index, uint32_t out[8] = nullptr) {
+        return call<int32_t>([&](int32_t* v) { return ge2gl_get_stack(h_, index, out, v); });
+    }
     Result<std::vector<uint32_t>> getMatrix(int32_t type) {
         return call<std::vector<uint32_t>>([&](std::vector<uint32_t>* v) {
             uint32_t words[16] = {};
