@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "debugger/debugger.h"
 
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GE debugger (issue 14; docs/debugger.md): breakpoints and read-outs over a GeEngine, shared
 // by the plugin API (ge2gl_debug_*) and `ge2gl step`.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Primitive assembly shared by the software model (softmodel/soft_renderer.cpp) and the GL translator
 // (translator/vertex_pipeline.cpp), so that both backends build the same primitives from a draw:
 // the walk over a PRIM's vertices (assemblePrimitives), the corners of rectangles drawn as

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Near-plane clipping and the discard rules (see clip.h).
 #include "geometry/clip.h"
 

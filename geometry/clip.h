@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Clipping and discard rules of the software model, run by both backends (manual §10;
 // ge-reference.md §8.5).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What the rasteriser (raster.h) hands on for every covered pixel: the software model shades it
 // with its per-pixel pipeline (softmodel/pixel.h shadeFragments); the GL translator's exact mode
 // packs lines and points into per-fragment records (translator/tri_setup.h packFragment). Its own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-vertex lighting (manual §9; ge-reference.md §8.3, §8.9, §8.12). See lighting.h.
 #include "geometry/lighting.h"
 

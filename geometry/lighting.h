@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-vertex lighting of the software model, run by both backends (manual §9, equations 9-1 …
 // 9-10; ge-reference.md §3.6, §8.3 last two rows, §8.9, §8.12).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rasterisation of triangles, rectangles, lines and points (see raster.h for the rules followed).
 #include "geometry/raster.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rasterisation as the software model does it: triangles, rectangles, lines and points in drawing
 // coordinates → Fragments (manual §3.6, §4, §8; ge-reference.md §8.1, §8.2, §8.6, §8.11, §6.6).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bezier and spline patch tessellation (manual §5, §13.1.1; ge-reference.md §3.2).
 //
 // Control point (u, v) is vertex number v·Ucount + u (through the index buffer when IT ≠ 0), read

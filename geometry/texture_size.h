@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The texture size rule both backends share: the size the GE scales texture coordinates by, and
 // the bounds of the texel index. The software model (geometry/transform.cpp and assembly.cpp for
 // through mode's texel coordinates, softmodel/sampler.cpp TexLevel::setSize, the level of detail's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex processing (see transform.h).
 #include "geometry/transform.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex processing with the software model's arithmetic, run by both backends (manual §3, §7, §9,
 // §13.1, §13.2, §16; ge-reference.md §3.4, §3.5, §3.9, §5.5, §8.1, §8.9, §8.10).
 //

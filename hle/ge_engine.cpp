@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/ge_engine.h"
 
 #include <algorithm>

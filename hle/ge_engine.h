@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GE machine: executes display lists (manual §20, §11.1; ge-reference.md §4) against a
 // GeState and guest Memory, and hands draws, transfers and syncs to a Renderer.
 //

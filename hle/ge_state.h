@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GE engine state: the 256-word command register file, the matrices, the palette RAM and the
 // internal address registers (ge-reference.md §1, §3.4, §4.1). Typed accessors for every field
 // are generated from ge_fields.def; backends never shift and mask register words themselves.

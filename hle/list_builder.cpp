@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/list_builder.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Display-list authoring: a small sceGu-like builder that emits GE command words, places the data
 // they point at (vertices, indices, textures, CLUTs) into guest memory, and can record the same
 // command stream as a `.ppdmp` frame dump.

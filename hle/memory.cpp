@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/memory.h"
 
 #include <sys/mman.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The PSP address space as the GE sees it (ge-reference.md §7, manual §22).
 //
 // Every access is bounds-checked. Host pointers are handed out only for ranges that lie wholly

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PSP 16-bit pixel conversions (ge-reference.md §5.4, §6.1, §8.8).
 #include "hle/pixel_format.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PSP 16/32-bit pixel layouts (ge-reference.md §5.4, §6.1, §8.8).
 //
 // RGBA8888 is handled as a u32 with R in bits 7..0, G 15..8, B 23..16, A 31..24 — the same

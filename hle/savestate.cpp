@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/savestate.h"
 
 #include <xxhash.h>

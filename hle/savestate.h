@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-GE save states (issue 14; the byte format is docs/savestate.md).
 //
 // A state holds what cannot be re-derived: the engine (registers, matrices and their upload

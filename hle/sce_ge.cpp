@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/sce_ge.h"
 
 #include <cstdio>

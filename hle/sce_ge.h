@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The sceGe kernel module's list semantics on top of GeEngine (ge-reference.md §4.4, §4.5, §4.7;
 // behaviour follows the uOFW reimplementation of ge.prx, with PPSSPP's choices where the firmware
 // behaviour is unknown or would hang a game).

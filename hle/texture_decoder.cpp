@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Texture decoding (manual §13; ge-reference.md §6).
 //
 // One decode per texture level: the source bytes are fetched once (bounds-checked, unreadable

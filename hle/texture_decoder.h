@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Texture decoding (manual §13; ge-reference.md §6): every texel format, CLUT lookup, swizzled
 // storage and the PSP's DXT variants, to RGBA8888 (R in bits 7..0).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Basic integer types and small helpers shared by every part of ge2gl.
 #pragma once
 #include <cstdint>

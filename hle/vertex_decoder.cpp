@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex decoding (manual §6, §7; ge-reference.md §5).
 #include "hle/vertex_decoder.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex decoding (manual §6, §7; ge-reference.md §5): the one reference implementation of the
 // VTYPE formats, morphing, skinning and index reading, shared by both backends and BBOX.
 #pragma once

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Every dump of at most 1 MiB must end with a clean exit (0 or 1, one message line) within 10 s and
 # 1 GiB peak memory, with either backend (issue 12). Usage:
 #   scripts/check_dumps.sh [BUILD_DIR] DUMP_OR_DIR...

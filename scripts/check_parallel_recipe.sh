@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the README's GNU parallel recipe (the sh block after "with GNU parallel") exactly as it is
 # written, from the project root, and checks that the merged file holds every frametest once
 # (issue 15: "the GNU parallel recipe in the README works as written").

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Which hardware checkpoints PPSSPP fails, and which of those ge2gl passes (issue 13).
 
     PPSSPP_HEADLESS=/path/to/PPSSPPHeadless PSPAUTOTESTS=/path/to/pspautotests \

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL generator of the GL hardware mode's geometry shader (see hw_vertex.h): everything the CPU
 // path does with a whole transform-mode triangle, translator/vertex_pipeline.cpp
 // VertexPipeline::triangle line by line:

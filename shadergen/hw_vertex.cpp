@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL generator of the GL hardware mode's vertex shader (see hw_vertex.h).
 //
 // Every statement mirrors a line of the CPU code all backends run (named in the comments), in the

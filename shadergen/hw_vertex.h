@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL hardware mode (issue 16): the GE's vertex work in a generated vertex shader, and the
 // whole-primitive work (discard rules, near-plane clipping, culling) in a generated geometry shader.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL hardware mode vertex shaders: the key (canonical form, description, from GeState) and the
 // uniform block (from GeState). See hw_vertex.h; the generator is hw_vertex.cpp.
 #include <cstring>

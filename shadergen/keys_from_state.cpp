@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // State → keys, fixed-function decision and uniform values (see keys_from_state.h).
 #include "shadergen/keys_from_state.h"
 #include "geometry/reference_rules.h"

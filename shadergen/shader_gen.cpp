@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL generators. Every formula cites the ge-reference.md row it implements; integer
 // arithmetic throughout so the result is the GE's, not an approximation in float.
 #include "shadergen/shader_gen.h"

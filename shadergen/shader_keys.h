@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shader keys: small POD descriptions of one GE pixel/vertex pipeline configuration, and the host
 // capabilities the generated GLSL may use (style-anchors §7.4–7.6).
 //

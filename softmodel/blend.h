@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Alpha blending, logic operations, the comparison functions of the alpha/stencil/depth tests and
 // the stencil operations, in the software model's exact integer forms (manual §17.4–§17.10;
 // ge-reference.md §3.10, §8.3, §8.7). Private to softmodel/; inlined into the shading routines.

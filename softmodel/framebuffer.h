@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Inline frame-buffer pixel access for the software model's hot loop (private to softmodel/).
 //
 // The layouts are those of hle/pixel_format.h (ge-reference.md §6.1): 5650 R 4..0 G 10..5 B 15..11;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The software model's per-pixel pipeline (manual §13–§19; ge-reference.md §8.3, §8.4, §8.7–§8.10).
 //
 // buildPixelState resolves the GE state of one draw into PixelState::Impl (decoded textures,

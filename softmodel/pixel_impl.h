@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PixelState::Impl: everything the per-pixel pipeline needs, resolved once per draw by
 // buildPixelState (softmodel/pixel.cpp) and read-only while shading. Private to softmodel/.
 #pragma once

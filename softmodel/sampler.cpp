@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "softmodel/sampler.h"
 
 #include <algorithm>

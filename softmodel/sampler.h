@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Texture sampling for the software model: level-of-detail selection, nearest and bilinear
 // filtering, repeat/clamp, mipmap blending (manual §13.10–§13.12; ge-reference.md §6.6, §8.10).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The software model's Renderer: primitive assembly, batching and band threads (see soft_renderer.h).
 #include "softmodel/soft_renderer.h"
 

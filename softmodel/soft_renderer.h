@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The software model's Renderer: ge2gl's bit-accurate CPU GE (manual §3–§11; ge-reference.md §8).
 //
 // Per draw, on the caller's thread: vertices are decoded once (hle/vertex_decoder.h; patches via

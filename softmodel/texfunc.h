@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Texture functions, colour doubling, colour addition and fog: the software model's exact integer
 // forms (manual §13.13, §14, §15, §16; ge-reference.md §8.3, §8.13). Private to softmodel/.
 //

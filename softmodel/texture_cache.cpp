@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "softmodel/texture_cache.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Accuracy over the 20 real game dumps in ../shared/frametests, with PPSSPP's measure (MSE over the
 // top-left 480x272, RGB). The floors below are what the landed code reaches; they only go up, except
 // where a rule measured on a PSP moves a dump away from PPSSPP's render (named at the floors).

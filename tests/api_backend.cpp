@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plugin API with real drawing (software backend), with the worker thread, and the public
 // headers' build hygiene.
 #include <gtest/gtest.h>

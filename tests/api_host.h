@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: an "emulator" that owns PSP RAM/VRAM, writes display lists into it like a game,
 // and talks to ge2gl only through the C ABI (include/ge2gl/ge2gl.h).
 #pragma once

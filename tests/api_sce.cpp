@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sceGe semantics through the C ABI, driven as an emulator would drive them: lists written into
 // host-owned RAM, sceGe calls forwarded, interrupts received through callbacks. Expected values
 // follow ge-reference.md §4.4, §4.5, §4.7 (uOFW behaviour) and are worked out by hand per test.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Lighting tests (manual equations 9-1 … 9-10; ge-reference §8.3, §8.9, §8.12). Each expected
 // colour is worked out by hand with the fixed-point forms of §8.3:
 //   global ambient ((2·MAC + 1)·(2·AC + 1)) >> 10;  per light ((2·Lc + 1)·(2·Mc + 1)·s) >> 19,

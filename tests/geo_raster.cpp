@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rasteriser tests: coverage rules (top-left fill, rectangles, lines, points), attribute
 // interpolation, rectangle texture orientation (ge-reference §8.1, §8.2, §8.11) and bands.
 // Expected values are worked out by hand from those rules.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex processing and clipping tests: matrix element order (ge-reference §3.4), viewport and
 // the 1/16-pixel rounding (§8.1), texture-coordinate generation (§13.1–13.2, §8.10), fog (§3.9,
 // §8.9) and the clipping/discard rules (§8.5). Expected values are computed by hand.

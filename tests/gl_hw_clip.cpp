@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode's geometry shader (shadergen/hw_geometry.cpp, contract in hw_vertex.h)
 // against the CPU path it replaces: translator/vertex_pipeline.cpp VertexPipeline::processPrim on
 // the same state and vertex bytes gives Geometry::tris, the GlVertex stream (drawing coordinates)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode (GlMode::Hw): native GL rasterisation at render scale N, VRAM write-back
 // box-downsampled to the PSP's pixels, the displayed frame read at N× from the render target.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode's generated vertex shader (shadergen/hw_vertex.*) against the CPU code every
 // backend runs: hle/vertex_decoder (formats, morphing, skinning) + geo::makeTransformState /
 // geo::transformVertex (matrices, viewport, 1/16-pixel snap, depth, fog, texture mapping, lighting)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL ↔ software-model parity (exact interpolation, translator/tri_setup.h): scenes whose pixels
 // depend on per-pixel interpolation — Gouraud colours across large triangles, perspective-correct
 // texture coordinates with bilinear filtering and per-quad mipmap selection, interpolated fog,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL translator: the GE pixel pipeline in the fragment shader, checked byte-exactly against the
 // fixed-point formulas of ge-reference.md §8.3, §8.7, §8.8 — in both the extension path
 // (framebuffer fetch) and `baseline` (destination copies).

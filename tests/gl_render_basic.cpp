@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL translator end-to-end: clears, flat rectangles and frame-buffer formats, exact VRAM bytes.
 #include "tests/gl_fixture.h"
 

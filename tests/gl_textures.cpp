@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL translator: texture sampling (nearest/bilinear with 4-bit weights, wrap/clamp), CLUT,
 // render-to-texture and CLUT loads from a frame buffer, transfers and CPU writes over targets.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Differential tests (style-anchors §7.12): the same display list through the GL translator and
 // the software model (the bit-accurate reference), comparing VRAM byte for byte.
 //

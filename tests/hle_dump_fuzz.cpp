@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Robustness of the .ppdmp reader against damaged input: truncations, seeded bit flips and byte
 // overwrites in the header and both compressed blocks, lying size fields, damaged zips and
 // random garbage. Every load must either fail with a non-empty message or give a Dump whose

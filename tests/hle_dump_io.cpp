@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // .ppdmp reader/writer tests (ppdmp-format.md §1–3, §5, §7): hand-built files with known bytes,
 // error cases, the 20 frametest dumps (load, facts, read → serialise → read round trip) and the
 // DumpWriter.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Display-list control commands (manual §20, §11.1; ge-reference §4), with expected values taken
 // from the reference's worked examples.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ListBuilder (hle/list_builder.h): exact command words for known calls (expected values worked
 // out by hand from ge-reference.md §3 and the SDK conventions it records), vertex packing against
 // the manual's layout examples, execution of built lists on the GeEngine, the DumpRecorder's

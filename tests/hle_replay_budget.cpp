@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs; issue 12): small
 // hostile dumps that loop or make the player copy without end stop at the budget with a warning,
 // and the estimate itself adds up as documented.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // When the GE runs during a dump replay (ppdmp-format.md §6.2 "When the GE runs"; PPSSPP's
 // GPU/Debugger/Playback.cpp DumpExecute + BufMapping), with dumps this file writes itself.
 //

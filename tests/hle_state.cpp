@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Field accessors, vertex layout, context layout and memory (ge-reference §1, §3, §5, §7).
 #include <gtest/gtest.h>
 

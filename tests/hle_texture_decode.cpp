@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Texture decoding (manual §13; ge-reference §6). Expected texels are computed by hand from the
 // reference's layouts; DXT values follow §6.5 (no endpoint replication, PSP block order).
 #include <gtest/gtest.h>

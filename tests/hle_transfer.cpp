@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Block transfers (ge-reference §3.11). The overlap expectations are pspautotests'
 // gpu/transfer/overlap.expected, recorded on a PSP.
 #include <gtest/gtest.h>

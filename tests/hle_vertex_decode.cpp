@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex decoding (manual §6, §7; ge-reference §5). Expected values computed by hand from the
 // component tables of §5.2–§5.5.
 #include <gtest/gtest.h>

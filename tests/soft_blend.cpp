@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pixel side of the software model, back end of the pipeline: blending (every equation and factor
 // code), dithering + clamp + truncation per format, logic ops, PMSK masks, clear mode.
 // Expected values are computed by hand from ge-reference.md §3.10 and §8.3/§8.4/§8.7/§8.8.

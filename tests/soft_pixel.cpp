@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pixel side of the software model, front of the pipeline: texture functions (with doubling and
 // secondary colour), fog, the depth-range/alpha/colour/stencil/depth tests, every stencil op per
 // format, and the stage order of ge-reference.md §8.4. Expected values are computed by hand from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // End-to-end tests of the software renderer: display lists built with ListBuilder, executed by
 // GeEngine, drawn by SoftRenderer into emulated VRAM. Checks coverage, culling sense (§3.6),
 // PRIM type 7 continuation (§3.2), near clipping (§8.5), immediate vertices (§3.12), render to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sprites (RECTANGLES) as a PSP draws them, not as the reference renderer does (docs/conformance.md
 // "Sprites"): in transform mode the viewport arithmetic is float24 and the screen position rounds up
 // to the next 1/16 pixel before OFFSETX/Y is taken off (geometry/transform.cpp projectToScreen); in

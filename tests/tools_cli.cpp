@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ge2gl CLI as users and scripts drive it: outputs, file formats, exit codes, error lines.
 #include <gtest/gtest.h>
 

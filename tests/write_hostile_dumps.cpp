@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writes the hostile dumps of tests/hostile_dumps.h into a folder, for scripts/check_dumps.sh
 // (issue 12: every dump of at most 1 MiB ends cleanly within 10 s and 1 GiB with either backend).
 #include <cstdio>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Google Benchmark suite: replay time per dump and backend. Speed targets live here, not in tests.
 //   ./build/ge2gl_bench [--benchmark_filter=soft] — dumps from ../shared/frametests and dumps/.
 #include <benchmark/benchmark.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ge2gl command-line tool: info, disasm, render, compare, merge, report, bench, blame, bisect, fuzz.
 // Errors are one line on stderr and a non-zero exit.
 #include <CLI/CLI.hpp>

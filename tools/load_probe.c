@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ge2gl_load_probe: what loading libge2gl costs a host that does not ask for a headless GL
  * context (issue 11). In a fresh process: dlopen the library, create and destroy a software-backend

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // make_scenes: writes the project's own GE frame dumps (dumps/*.ppdmp) from scene descriptions
 // built with ge::ListBuilder. Every scene draws a 480×272 frame into the 8888 frame buffer at
 // VRAM 0x04000000 (stride 512); all data (vertices, textures, palettes) is generated here, so the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Render targets as caches of VRAM (see framebuffer_manager.h).
 #include "translator/framebuffer_manager.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Render targets as caches of emulated VRAM (style-anchors §8.7: VRAM is the source of truth).
 //
 // A colour target is (VRAM address, stride, format) ↔ an RGBA8UI texture whose row y is drawing

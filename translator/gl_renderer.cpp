@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL renderer: consumes the engine's packets, keeps VRAM exact (see gl_renderer.h).
 //
 // Per draw: the CPU vertex pipeline produces GL-ready vertices in drawing coordinates; the state

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ge2gl's OpenGL backend: draws what the PSP's GE draws, on GL 3.3 core, headless (OSMesa by
 // default, EGL surfaceless as an option, or a context the host made current).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decoded-texture cache for the GL path.
 //
 // Each entry holds the levels a draw samples, decoded by the shared decoder

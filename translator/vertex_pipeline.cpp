@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CPU vertex processing for the GL path (see vertex_pipeline.h).
 #include "translator/vertex_pipeline.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CPU vertex processing for the GL path: decode (shared decoder), then the reference transform,
 // lighting, texture-coordinate generation, fog, clipping and discard rules the software model runs
 // too (geometry/transform.h, clip.h), then primitive assembly (geometry/assembly.h) into GL-ready

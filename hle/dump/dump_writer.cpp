@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DumpWriter: see dump_writer.h and ppdmp-format.md §4, §7.
 #include "hle/dump/dump_writer.h"
 

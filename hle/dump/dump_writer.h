@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // DumpWriter: authors .ppdmp dumps in the record order PPSSPP's recorder produces
 // (ppdmp-format.md §4, §7), for the project's scene generator and for tests.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/dump/player.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Replays a .ppdmp frame dump on a GeEngine (ppdmp-format.md §6): rebuilds guest memory and a
 // runnable display list from the records, executes it with the engine's current backend, and
 // reports the frame buffer to show.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // .ppdmp reader/writer; see ppdmp.h and ppdmp-format.md §1–3, §5, §7.
 #include "hle/dump/ppdmp.h"
 

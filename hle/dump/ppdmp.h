@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reader and writer for PPSSPP's `.ppdmp` GE frame dumps (ppdmp-format.md §1–3, §5, §7).
 //
 // A dump is a header, an array of 9-byte records and one "push buffer" byte array that the

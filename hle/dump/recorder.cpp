@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FrameRecorder: see recorder.h, docs/recording.md and ppdmp-format.md §3–§7. The structure
 // follows PPSSPP's GPU/Debugger/Record.cpp (NotifyCommand, FlushPrimState, EmitTextureData,
 // EmitClut, EmitTransfer, NotifyMemcpy/NotifyMemset, GetTargetFlags, DirtyDrawnVRAM,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // FrameRecorder: records what a running GeEngine executes as a `.ppdmp` frame dump (version 6),
 // the way PPSSPP's recorder does (GPU/Debugger/Record.cpp, GPURecord::Recorder), so that PPSSPP's
 // player and `ge2gl render` replay it to the same picture (ppdmp-format.md §4, §6, §7;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Where the dump player puts the dump's bytes in guest memory, as PPSSPP's player does
 // (GPU/Debugger/Playback.cpp: `BufMapping`, and the kernel's `userMemory` BlockAllocator behind it).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/commands/blocktransfer, re-created (issue 13; gu_sim.h, conformance.h).
 // A block transfer from a buffer of 0xAA bytes to one of 0xBB bytes (2 MiB each, in RAM), 16- or
 // 32-bit pixels, with source and destination strides 0 to 0xFC00 and sizes 1x1 to 1024x512; the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/commands/light, re-created (issue 13; gu_sim.h, conformance.h). One
 // light (light 0) of each type (directional, point, spot) and each component mode (ambient +
 // diffuse, + specular, powered diffuse) lights a 2x2 transform-mode quad with a 16-bit normal of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/commands/material, re-created (issue 13; gu_sim.h, conformance.h,
 // screenshot.h). A background sprite (0, 0)-(479, 272) whose texels are all transparent, then 17
 // through-mode sprites of 40x20 (ten a row from (10, 10), 47 pixels apart, rows 26 apart) with a 4x4

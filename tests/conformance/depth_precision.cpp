@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/depth/precision, re-created (issue 13; gu_sim.h). A textured sprite at
 // depth 0x1234 (through mode) or at a 16-bit transform-mode Z that the viewport maps to about
 // 0x1234 is drawn over a depth buffer cleared to 0x1233, 0x1234 or 0x1235 with each depth

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/filtering/nearest and linear, re-created (issue 13; gu_sim.h,
 // conformance.h). A 2x2 8888 texture (buffer width 4) of two colours — alternating columns, or one
 // texel against three — is drawn by a transform-mode sprite covering pixels (0, 0)-(2, 2) with

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/filtering/precisionlinear2d, precisionlinear3d, precisionnearest2d and
 // precisionnearest3d, re-created (issue 13; gu_sim.h, conformance.h). A 2x2 8888 texture (white,
 // black / red, green; buffer width 4, clamped) is magnified onto a sprite from (0, 0) to (w, h)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/primitives/{triangles, trianglestrip, trianglefan, points, invalidprim,
 // lines, linestrip, rectangles}, re-created (issue 13; gu_sim.h, conformance.h, screenshot.h). Each
 // draws one 40x40 shape (or a pair of points / a short line) per vertex format and mode on a frame

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/primitives/indices and primitives/continue, re-created (issue 13;
 // gu_sim.h, conformance.h, screenshot.h). The vertex and index arrays are the test program's static
 // arrays, placed in memory once; the draws point into them as its sceGuDrawArray calls do (an

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/texfunc/{add,blend,decal,modulate,replace}, re-created (issue 13;
 // gu_sim.h, conformance.h). Each checkpoint draws a transform-mode sprite of vertex colour `c`
 // (no texture coordinates: texel 0) textured by a 1x1 8888 texture of colour `texc` that the CPU

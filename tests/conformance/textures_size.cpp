@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/textures/size, re-created (issue 13; gu_sim.h, conformance.h). Textures of
 // 1 to 32768 texels wide (one row) and 1 to 32768 texels high (one column) in 8888, 4444, CLUT8 and
 // CLUT4 are drawn by a sprite over pixels (0, 0)-(256, 256), in transform mode (a 256x256 viewport,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/vertices/morph, re-created (issue 13; gu_sim.h, conformance.h,
 // screenshot.h). Twelve 32x32 transform-mode sprites, eleven a row from (10, 10), 42 pixels apart,
 // each with 1, 2 or 4 morph copies of its two vertices (VTYPE morph count): copy 0 the box, in

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared pieces of the libFuzzer harnesses (docs/fuzzing.md): a forward byte reader, the work caps
 // that keep one input well under a second whatever it asks for, and a Renderer / ReplayTarget
 // pair that applies them.

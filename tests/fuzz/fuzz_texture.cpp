@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (e): texture decoding — every texel format (and the undefined ones), CLUT loads and
 // lookups, swizzled storage, DXT1/3/5, all 8 levels — then the software model's texture cache and
 // sampler (level of detail, nearest/bilinear, wrap/clamp) at coordinates from the input.

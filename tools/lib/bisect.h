@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl bisect`: the first draw after which two replays' VRAM differ (issue 15, accuracy tools).
 //
 // One lockstep replay: each side (DUMP on --backend A; DUMP on --ref-backend B, or --ref-dump

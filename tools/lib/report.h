@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl report`: a static HTML page of a `ge2gl compare --json` run (issue 15, accuracy tools).
 //
 // Input: the JSON of one compare run, or the --json files of its shards (joined as `ge2gl merge`
