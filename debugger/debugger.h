@@ -99,7 +99,7 @@ struct DrawVertex {
     int screenZ = 0;
     float s = 0, t = 0, q = 1;
     u8 color[4] = {};
-    bool outside = false;  // breaks the §8.5 screen range rule (the primitive is dropped)
+    bool outside = false;  // breaks the docs/ge-rules.md §8.5 screen range rule (the primitive is dropped)
 };
 bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<DrawVertex>& out, std::string& err);
 

@@ -23,7 +23,7 @@ inline bool xyOutside(const TransformState& ts, const ClipVertex& v) {
 }  // namespace
 
 int depthSide(const ClipVertex& v) {
-    // 1.00003: the tolerance measured for the depth range (§8.5).
+    // 1.00003: the tolerance measured for the depth range (docs/ge-rules.md §8.5).
     constexpr float kBound = 1.00003f;
     const float r = v.clip[2] / v.clip[3];
     if (r >= kBound) return 1;

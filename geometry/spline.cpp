@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Bezier and spline patch tessellation (manual §5, §13.1.1; ge-reference.md §3.2).
+// Bezier and spline patch tessellation (manual §5, §13.1.1; docs/ge-rules.md §3.2).
 //
 // Control point (u, v) is vertex number v·Ucount + u (through the index buffer when IT ≠ 0), read
 // with VertexReader (morphing applied, skinning not: the reference does not apply it to patches).
@@ -201,7 +201,7 @@ struct Surface {
             std::copy((*cps)[0].color, (*cps)[0].color + 4, out.color);
         }
         if (!hasUV) {
-            // Generated texture coordinates: S = patch_u + i/divU, T = patch_v + j/divV (§3.2, manual §13.1.1).
+            // Generated texture coordinates: S = patch_u + i/divU, T = patch_v + j/divV (ge-rules.md §3.2, manual §13.1.1).
             out.uv[0] = float(pu) + tu;
             out.uv[1] = float(pv) + tv;
         }
@@ -222,7 +222,7 @@ struct Surface {
                 len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
             }
             if (len2 > 1e-30f) {
-                // PFACE = 1 reverses the generated normals (§3.2).
+                // PFACE = 1 reverses the generated normals (ge-rules.md §3.2).
                 const float inv = (reverseFace ? -1.0f : 1.0f) / std::sqrt(len2);
                 for (int c = 0; c < 3; ++c) out.nrm[c] = n[c] * inv;
             }
@@ -281,7 +281,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     out.prim = p.patchPrim == 0 ? GE_PRIM_TRIANGLES : p.patchPrim == 1 ? GE_PRIM_LINES : GE_PRIM_POINTS;
 
     const u32 ucount = p.ucount, vcount = p.vcount;
-    // Fewer than 4 control points in either direction draws nothing (§3.2, observed: PPSSPP).
+    // Fewer than 4 control points in either direction draws nothing (ge-rules.md §3.2, observed: PPSSPP).
     if (ucount < 4 || vcount < 4) return true;
     const u32 divU = std::max<u32>(p.divU, 1), divV = std::max<u32>(p.divV, 1);
     const u32 patchesU = p.spline ? ucount - 3 : (ucount - 1) / 3;
@@ -311,7 +311,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     s.hasWeights = reader.hasWeights();
     s.weightCount = reader.weightCount();
     s.reverseFace = p.reverseFace;
-    // Normals are generated when the vertex has none and something reads them: lighting (§3.2),
+    // Normals are generated when the vertex has none and something reads them: lighting (ge-rules.md §3.2),
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
     s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));
     if (p.spline) {

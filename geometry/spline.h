@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Bezier and spline patch tessellation (manual §5; ge-reference.md §3.2). Both backends draw the
+// Bezier and spline patch tessellation (manual §5; docs/ge-rules.md §3.2). Both backends draw the
 // output through their usual vertex path (transform.h onwards).
 #pragma once
 #include <string>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Dump replay (ppdmp-format.md §6) on the real frametests, and robustness of the replay against
+// Dump replay (docs/ppdmp.md §6) on the real frametests, and robustness of the replay against
 // corrupted dumps (random words, record types, sizes and pointers): never a crash or a hang.
 #include <gtest/gtest.h>
 

@@ -42,7 +42,7 @@ inline std::vector<u32> frameState() {
 constexpr u32 kThroughColor = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
 
 // A block that draws a full-screen rectangle and jumps back to its own start (the BASE + VADR
-// the vertices queued, since a draw advances the vertex pointer, §4.6): each catch-up runs until
+// the vertices queued, since a draw advances the vertex pointer, docs/ge-rules.md §4.6): each catch-up runs until
 // its command budget, the next starts over.
 inline dump::Dump rectangleLoop() {
     dump::DumpWriter w = start();

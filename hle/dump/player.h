@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Replays a .ppdmp frame dump on a GeEngine (ppdmp-format.md §6): rebuilds guest memory and a
+// Replays a .ppdmp frame dump on a GeEngine (docs/ppdmp.md §6): rebuilds guest memory and a
 // runnable display list from the records, executes it with the engine's current backend, and
 // reports the frame buffer to show.
 #pragma once
@@ -18,7 +18,7 @@ struct DumpSummary {
 };
 DumpSummary summarize(const Dump& d);
 
-// When the GE runs during a replay (ppdmp-format.md §6.2 "When the GE runs").
+// When the GE runs during a replay (ppdmp.md §6.2 "When the GE runs").
 enum class ReplayTiming {
     // As PPSSPP's player (GPU/Debugger/Playback.cpp DumpExecute): REGISTERS blocks are appended
     // without moving the stall address; the GE catches up only at the player's sync points (a
