@@ -83,7 +83,7 @@ inline TextureFunctionFn pickTextureFunction(u32 func, bool rgba, bool dbl) {
 #undef GE2GL_TF
 }
 
-// ge-rules.md §8.4 step 1 / §15: Cv + Cs, clamped to 0–255 (doubling never touches Cs, ge-rules.md §8.13).
+// ge-rules.md §8.4 step 1, manual §15: Cv + Cs, clamped to 0–255 (doubling never touches Cs, ge-rules.md §8.13).
 inline void addSecondaryAndClamp(Rgba& c, const u8 sec[3]) {
     c.r = std::min(c.r + sec[0], 255);
     c.g = std::min(c.g + sec[1], 255);
