@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The GE debugger (issue 14; docs/debugger.md): breakpoints and read-outs over a GeEngine, shared
+// The GE debugger (docs/debugger.md): breakpoints and read-outs over a GeEngine, shared
 // by the plugin API (ge2gl_debug_*) and `ge2gl step`.
 //
 // Breakpoints is a CommandObserver: before each command it decides whether the GE stops there

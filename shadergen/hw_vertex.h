@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// GL hardware mode (issue 16): the GE's vertex work in a generated vertex shader, and the
+// GL hardware mode: the GE's vertex work in a generated vertex shader, and the
 // whole-primitive work (discard rules, near-plane clipping, culling) in a generated geometry shader.
 //
 // The vertex shader reproduces, per vertex and with the same float operation order, what every

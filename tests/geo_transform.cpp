@@ -269,7 +269,7 @@ TEST(GeoTransform, ScreenRangeAndDepthFlags) {
     EXPECT_TRUE(r.run(at(5000, 10, 0.5f)).outside);
 }
 
-// NaN and huge screen Z/W convert to integers without undefined behaviour (issue 12: clang's
+// NaN and huge screen Z/W convert to integers without undefined behaviour (clang's
 // float-cast-overflow check, enabled in the sanitizer build, caught int(NaN) here): NaN depth is 0,
 // huge depth 65535, a NaN clip parameter gives the first vertex's colour.
 TEST(GeoTransform, NanAndHugeDepthConvertSafely) {

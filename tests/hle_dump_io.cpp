@@ -364,7 +364,7 @@ std::vector<u8> zstdRleBomb(u32 blocks) {
     return out;
 }
 
-// Hostile sizes cost neither memory nor time (issue 12): a 4 KB frame that would decompress to
+// Hostile sizes cost neither memory nor time: a 4 KB frame that would decompress to
 // 128 MiB under a header that says 64 bytes stops at the header's size; caps on the header's
 // record count and push-buffer size (ppdmp.h) refuse before anything is allocated.
 TEST(DumpLoad, DecompressionBombsStopAtTheHeadersSize) {
@@ -397,7 +397,7 @@ u64 residentBytes() {
 }
 
 // A zip whose directory claims a 200 MiB entry that holds a few bytes: refused as truncated after
-// reading what is there, without allocating the claimed size first (issue 12).
+// reading what is there, without allocating the claimed size first.
 TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
     const fs::path zpath = tempPath("liar.zip");
     const std::vector<u8> body = buildValid(6, "LIAR00001", kRecs, pushBytes20());

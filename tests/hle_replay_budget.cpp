@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs; issue 12): small
+// Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs): small
 // hostile dumps that loop or make the player copy without end stop at the budget with a warning,
 // and the estimate itself adds up as documented.
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Small hostile dumps written with the project's own DumpWriter (issue 12): each asks for far
+// Small hostile dumps written with the project's own DumpWriter: each asks for far
 // more work than a frame, or for work without end. Shared by the replay-budget tests and by
 // write_hostile_dumps, which writes them as files for scripts/check_dumps.sh.
 #pragma once

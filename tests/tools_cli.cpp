@@ -186,7 +186,7 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
     fs::remove_all(t);
 }
 
-// Issue 12: numeric arguments are range-checked (no wrap-around), errors name the file once and
+// Numeric arguments are range-checked (no wrap-around), errors name the file once and
 // say why (errno text for I/O).
 TEST(Cli, NumbersAreRangeCheckedAndErrorsSayWhy) {
     fs::path t = tmpDir();
