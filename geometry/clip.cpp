@@ -85,8 +85,8 @@ int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVe
             // A new vertex whose screen X or Y is outside [0, 4096) drops every fan triangle that
             // uses it (PPSSPP Clipper.cpp clip_interpolate marks it, ProcessTriangle skips those
             // sub-triangles). Unlike input vertices, no Z-clamp exemption applies and Z is not
-            // checked: with the exemption Nova gets worse (3.35 → 3.61), without it better (2.55);
-            // checking Z as well drops whole clipped surfaces (Nova 431).
+            // checked: the Nova frametest is worse with the exemption, and checking Z as well
+            // drops whole clipped surfaces there (docs/accuracy.md).
             out[n].outside = xyOutside(ts, out[n]);
             tag[n] = 3 + i;
             ++n;

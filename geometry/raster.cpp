@@ -33,8 +33,7 @@ inline double recipW(float w) {
 // is PPSSPP's software renderer (TriangleEdge::Start, "centerOff = SCREEN_SCALE_FACTOR / 2 − 1"),
 // which made the reference renders: coverage, colours, depth, fog and texture coordinates all come
 // from the edge functions there. Sampling at 16x + 8 instead shifts every texture coordinate by a
-// sixteenth of a pixel, which the references show clearly (median MSE over the 20 game dumps fell
-// from ~20 to ~2 with this change).
+// sixteenth of a pixel, which the references show clearly (docs/accuracy.md).
 constexpr int kTriSample = 7;
 
 inline int sampleRowsOfTriangle(int minY, int maxY, int& y1, int& y2) {
@@ -374,11 +373,9 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
                 // (E0·z0 + E1·z1 + E2·z2)·(1/area) in single precision, attribute order, converted
                 // with Vec4<float>::Cast<int>, which on x86-64 is cvtps2dq: round to nearest, ties
                 // to even (not truncation). Coplanar geometry drawn twice (decals, Coded Arms' grate
-                // over its lava under GEQUAL) z-fights exactly where these roundings decide.
-                // Frametests within MSE 0.1: 10 -> 16 (Coded Arms 89 -> 0.0001, Pursuit Force
-                // UCUS 2.74 -> 0.012, Virtua Tennis 6.37 -> 0.089, Nova 2.55 -> 0.030, Monster
-                // Hunter 0.32 -> 0.017); the integer plane it replaces, and float with truncation,
-                // both lose.
+                // over its lava under GEQUAL) z-fights exactly where these roundings decide; an
+                // integer depth plane and float with truncation both lose against the references
+                // (docs/accuracy.md).
                 const float zf = interpolateF(oz[0], oz[1], oz[2], fw0, fw1, fw2, wsumRecip);
                 const float zr = std::nearbyint(zf);  // default rounding mode: nearest, ties to even
                 f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));

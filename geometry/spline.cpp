@@ -75,7 +75,7 @@ std::vector<SplineSpan> splineSpans(int count, int knotType) {
     // (1/8, 3/8, 3/8, 1/8). Still a partition of unity with exact ends, so a flat patch stays
     // flat, but its tessellated vertices sit at other places: GachiTora draws its button and
     // speech-bubble text as such 4x4 splines, and only these weights reproduce the reference's
-    // bilinear texel fractions there (MSE 0.19 -> 0.016).
+    // bilinear texel fractions there (docs/accuracy.md, "Reference quirks").
     if (count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
     return spans;
 }
@@ -152,8 +152,8 @@ struct Surface {
     // depends on this order; it moves tessellated vertices by a few ulps, which decides integer
     // Z at vertices and so z-fighting between coplanar patches: Coded Arms draws its floor grate
     // over its lava with GEQUAL, and the reference shows the lava in two streaks around the one
-    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (with depth
-    // interpolation rounded to nearest as in raster.cpp: Coded Arms 89.0 -> 0.0001).
+    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (together with
+    // depth interpolation rounded to nearest as in raster.cpp; docs/accuracy.md).
     // The 16 control points of the point's patch, P[b][a] (row b along v, column a along u),
     // looked up once per output vertex rather than once per attribute.
     using Patch16 = const DecodedVertex* [4][4];

@@ -77,13 +77,12 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
 
     // PPSSPP's software renderer (TransformUnit ComputeTransformState, POS_TO_CLIP) multiplies the
     // 4×4 forms of world, view and projection once per draw and transforms positions with that
-    // product: its float rounding differs from three chained products (Pursuit Force UCES
-    // 0.0125 → 0.0062, Monster Hunter slightly). Fog does not change this (its depth is computed
-    // separately: Monster Hunter 0.325 → 0.320, Frontier Gate 0.0136 → 0.0111, Pursuit Force
-    // UCUS 2.748 → 2.744), nor does lighting when every enabled light is directional (lighting then
+    // product: its float rounding differs from three chained products, and the references show
+    // the difference (docs/accuracy.md). Fog does not change this (its depth is computed
+    // separately), nor does lighting when every enabled light is directional (lighting then
     // needs only the world normal). A positional or spot light needs the world position, so the
     // position goes model → world and then through view·proj folded into one matrix
-    // (WORLD_TO_CLIP; GachiTora 0.876 → 0.874).
+    // (WORLD_TO_CLIP).
     bool needWorldPos = false;
     if (st.LTE_on()) {
         for (int n = 0; n < 4; ++n)
@@ -195,7 +194,7 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     // TransformUnit ClipToScreenInternal: int(x·16 + 0.375 − OFFX16)): a vertex left of / above
     // the drawing area therefore rounds toward zero, not down. For on-screen vertices the two
     // orders agree; off-screen ones move 1/16 pixel, which shifts the whole interpolation of big
-    // triangles (10 of the 20 game dumps within MSE 0.1 with this rule, 7 without). The value is
+    // triangles (the frametests need this order, docs/accuracy.md). The value is
     // limited first so wild (dropped or exempt) vertices convert safely; ±2^20 sixteenths is far
     // off screen.
     auto limit16 = [](double t) {
@@ -209,8 +208,8 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     // edge at 1920.0039 samples as from 1920.0625; gpu/filtering/precision*3d's corner at screen
     // X 2048.0 with OFFSETX 2048 + i/16 lands at −i/16, where the float subtraction above keeps
     // −(i − 1)/16). Triangles, lines and points keep the reference renderer's rule above: applied
-    // to every primitive, this rule leaves 1 of the 20 frametests within MSE 0.1 (19 without) and
-    // passes no further hardware checkpoint (docs/conformance.md).
+    // to every primitive, this rule passes no further hardware checkpoint and costs most
+    // frametests (docs/conformance.md, "Sprites").
     // Exact in double: f·16 is a float times a power of two.
     auto spriteTo16 = [&](float f, int off) { return limit16(std::ceil(double(f) * 16.0) - off); };
     v.sv.x = ts.sprite ? spriteTo16(xs, ts.offX16) : to16(xs, ts.offX16);

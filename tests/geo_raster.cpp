@@ -457,7 +457,7 @@ TEST(GeoRaster, LinesLeaveOutEndPixel) {
 // The reference renderer walks lines by accumulating (dx, dy) / steps in double precision and
 // truncating: from (0, 0) to (1.5, 9) px the X after six steps of 24/9 subpixels is
 // 15.999999999999998, still pixel 0, where exact arithmetic would reach pixel 1 (the Virtua
-// Tennis court lines need this walk: MSE 6.37 -> 3.07).
+// Tennis frametest's court lines need this walk; docs/accuracy.md).
 TEST(GeoRaster, LinesAccumulateTheirStepInDoublePrecision) {
     Collector c;
     rasterLine(fullScreen(), sv16(0, 0), sv16(24, 144), Band{}, c.sink);

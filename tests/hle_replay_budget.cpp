@@ -78,7 +78,8 @@ TEST(ReplayBudget, SharedPayloadCopiesStopAtTheBudget) {
 }
 
 TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
-    // The project's scenes (real frames of the 20 frametests: at most 31 ms, docs/accuracy.md).
+    // The project's scenes (the 20 frametests' real frames take at most about 30 ms of GE time,
+    // docs/timing.md).
     for (const char* name : {"lit_textured_skinned", "clut_dxt_sprites", "bezier_spline", "blend_stencil_logic",
                              "render_to_texture"}) {
         SCOPED_TRACE(name);

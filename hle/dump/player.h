@@ -40,7 +40,7 @@ struct ReplayOptions {
     // The replay's budget in emulated GE time (hle/ge_time.h), milliseconds; 0 = no limit. The
     // GE's work and the CPU/DMA copies the dump replays (charged like block transfers) count;
     // once it is used up the rest of the frame is not drawn and ReplayResult::warning says so.
-    // Default: 10 frames at 60 Hz. A real frame stays far below (the 20 frametests: docs).
+    // Default: 10 frames at 60 Hz. A real frame stays far below (the 20 frametests: docs/timing.md).
     double maxGeMs = kDefaultMaxGeMs;
     static constexpr double kDefaultMaxGeMs = 1000.0 / 6.0;
 };
