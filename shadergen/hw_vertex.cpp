@@ -12,7 +12,7 @@
 // Near-plane clipping. With the geometry shader (key.geometryShader = 1, hw_geometry.cpp) the
 // vertex shader only hands on the CPU's ClipVertex and the geometry shader clips, culls and drops
 // exactly as translator/vertex_pipeline.cpp does. The vertex shader alone (key.geometryShader = 0,
-// legacy until the translator attaches the geometry shader) leaves the cut to GL's clipper. The
+// which the translator never asks for; the tests compile it) leaves the cut to GL's clipper. The
 // CPU clipper (geometry/clip.cpp clipTriangleNear/lerpVertex) cuts a triangle at z = −w in clip
 // space and gives the new vertex the clip-space interpolation of every attribute (colours with an
 // 8-bit weight), then snaps it to the 1/16 grid. Alone, GL's clipper does it (gl_ClipDistance[0]

@@ -81,8 +81,8 @@
 // budget (VertexPipeline::notePrimitive) is not applied; strips whose quads the CPU draws as
 // rectangles (geometry/assembly.h stripQuadAsRect, culling off) are the caller's to keep away.
 //
-// ---- Without (key.geometryShader = 0: the vertex shader alone; kept until the translator
-// attaches the geometry shader, then to be removed) ----
+// ---- Without (key.geometryShader = 0: the vertex shader alone; the translator always attaches
+// the geometry shader (translator/gpu_vertex_path.cpp), so only the tests compile this form) ----
 // Outputs v_color, v_color2, v_tex, v_fog, v_z as above per vertex, and
 //   gl_Position  (ndc.x·w, ndc.y·w, 0, w): ndc from the snapped drawing position as above, w the
 //                clip W so that GL's clipper can cut the GE's near plane. A vertex that breaks a
@@ -144,7 +144,7 @@ struct HwVsKey {
     u8 flatShade = 0;    // SHADE = 0 or clear mode: colour outputs are `flat`
     // ---- set by the caller after hwVsKeyFromState (which leaves both 0) ----
     u8 geometryShader = 0;  // 1: the vertex shader feeds generateHwGeometryShader (see above);
-                            // 0: the vertex shader alone (legacy, GL clipping and culling)
+                            // 0: the vertex shader alone (GL clipping and culling; tests only)
     u8 primKind = 0;     // with geometryShader: the PRIM type drawn, 0 triangles (GL_TRIANGLES),
                          // 1 triangle strip (GL_TRIANGLE_STRIP), 2 triangle fan (GL_TRIANGLE_FAN);
                          // canonicalised to 0 without geometryShader or when above 2

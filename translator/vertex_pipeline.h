@@ -4,12 +4,15 @@
 // too (geometry/transform.h, clip.h), then primitive assembly (geometry/assembly.h) into GL-ready
 // vertices in drawing coordinates.
 //
-// Why on the CPU: the GE rounds screen positions to 1/16 pixel (docs/ge-rules.md §8.1), drops rather than
-// clips primitives outside the 4096² screen (ge-rules.md §8.5), lights in fixed point (ge-rules.md §8.3) and decides
-// rectangles' texture orientation from vertex order (ge-rules.md §8.2) — none of which a GL vertex shader
-// reproduces exactly. Sharing geometry/ with the software model keeps both backends' geometry
-// identical (style-anchors §8.8: one reference implementation). GL then only rasterises
-// triangles, with positions already on the GE's grid; its fill convention equals the GE's
+// Why on the CPU: the GE rounds screen positions to 1/16 pixel (docs/ge-rules.md §8.1), drops
+// rather than clips primitives outside the 4096² screen (ge-rules.md §8.5), lights in fixed point
+// (ge-rules.md §8.3) and decides rectangles' texture orientation from vertex order
+// (ge-rules.md §8.2) — none of which GL's own vertex processing does. The hardware mode's
+// generated vertex and geometry shaders (shadergen/hw_vertex.h) reproduce the first three for triangle,
+// strip and fan PRIMs sent to the GPU; everything else, and the exact mode, runs this code.
+// Sharing geometry/ with the software model keeps both backends' geometry identical
+// (style-anchors §8.8: one reference implementation). GL then only rasterises triangles, with
+// positions already on the GE's grid; its fill convention equals the GE's
 // top-left rule. Lines and points use the software model's rasteriser, geometry/raster.h (GL line
 // rules differ from the GE's DDA): each of their fragments becomes a one-pixel quad carrying that
 // fragment's exact attributes.
