@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plugin API's handle and the guard every entry point runs under (api/*.cpp).
 //
 // Locking (docs/plugin-api.md "Threads"): one recursive mutex per handle serialises calls. The

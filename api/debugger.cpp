@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GE debugger through the C ABI (include/ge2gl/ge2gl.h "Debugger", docs/debugger.md): stops
 // and steps on ge::debug::Breakpoints observing the handle's engine, and read-outs of
 // debugger/debugger.h. The breakpoints are made at the first debugger call, so a host that never

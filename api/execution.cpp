@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Running the GE for the plugin API: the call guard, interrupt delivery without the lock, the
 // chunked run loop, waits, the worker thread, the peek snapshot and held interrupts (context.h).
 #include "api/context.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frames for the host (RGBA8888 in host memory, or a GL texture made on the GPU) and dump replay
 // through a handle (plugin API; context.h).
 #include "api/context.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C ABI of the plugin (include/ge2gl/ge2gl.h) over SceGe + GeEngine + a backend: creation,
 // guest memory and the sceGe calls. Running the GE, syncs and the worker are in execution.cpp,
 // frames and dump replay in frames.cpp; the handle and the call guard in context.h.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frame-dump recording through the C ABI (include/ge2gl/ge2gl.h "Frame-dump recording";
 // docs/recording.md): a hle/dump FrameRecorder attached to the handle's engine between
 // ge2gl_record_begin and ge2gl_record_end, and the .ppdmp file written at the end.

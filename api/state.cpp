@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Save states through the C ABI (include/ge2gl/ge2gl.h "Save states"; format docs/savestate.md):
 // the handle's GE, sceGe layer and held-interrupt flag, plus guest memory on request. The
 // serialisation itself is hle/savestate.cpp; here the backend is brought to guest memory first

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Install rules for libge2gl (included from the top-level CMakeLists.txt when GE2GL_INSTALL is on):
 #   lib/libge2gl.so.0.1.0, libge2gl.so.0 (runtime) and the libge2gl.so namelink (development)
 #   include/ge2gl/ge2gl.h, ge2gl.hpp

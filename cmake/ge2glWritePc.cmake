@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Runs inside `cmake --install` (cmake/ge2glInstall.cmake): writes ge2gl.pc for the prefix being
 # installed to and installs it into <libdir>/pkgconfig. Inputs: GE2GL_PC_TEMPLATE, GE2GL_PC_WORK_DIR,
 # GE2GL_PC_INSTALL_LIBDIR, GE2GL_PC_INSTALL_INCLUDEDIR (relative to the prefix or absolute),

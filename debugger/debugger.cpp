@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "debugger/debugger.h"
 
 #include <cstdio>
@@ -101,7 +102,7 @@ std::string stateText(const GeState& st) {
     }
     auto matrix = [&](const char* name, const float* m, int rows, int cols, u32 index) {
         s += format("%s (upload index %u):\n", name, index);
-        // GE element order (§3.4): element k of a 3x4 is row k % 3, column k / 3; 4x4 row k % 4.
+        // GE element order (docs/ge-rules.md §3.4): element k of a 3x4 is row k % 3, column k / 3; 4x4 row k % 4.
         for (int r = 0; r < rows; ++r) {
             s += " ";
             for (int c = 0; c < cols; ++c) s += format(" %12.6g", double(m[c * rows + r]));
@@ -177,7 +178,7 @@ bool readDepth(const Memory& mem, const GeState& st, u32 width, u32 height, std:
 
 bool readStencil(const Memory& mem, const GeState& st, u32 width, u32 height, std::vector<u8>& out) {
     out.clear();
-    // The stencil lives in the colour buffer's alpha bits (manual §15; ge-reference §3.10).
+    // The stencil lives in the colour buffer's alpha bits (manual §15; ge-rules.md §3.10).
     const GeBufferFormat fmt = st.framebufFormat();
     const int shift = fmt == GE_FORMAT_5551 ? 15 : fmt == GE_FORMAT_4444 ? 12 : 24;
     return forEachFramePixel(mem, st, width, height,

@@ -1,4 +1,5 @@
-// The GE debugger (issue 14; docs/debugger.md): breakpoints and read-outs over a GeEngine, shared
+// SPDX-License-Identifier: MIT
+// The GE debugger (docs/debugger.md): breakpoints and read-outs over a GeEngine, shared
 // by the plugin API (ge2gl_debug_*) and `ge2gl step`.
 //
 // Breakpoints is a CommandObserver: before each command it decides whether the GE stops there
@@ -98,7 +99,7 @@ struct DrawVertex {
     int screenZ = 0;
     float s = 0, t = 0, q = 1;
     u8 color[4] = {};
-    bool outside = false;  // breaks the §8.5 screen range rule (the primitive is dropped)
+    bool outside = false;  // breaks the docs/ge-rules.md §8.5 screen range rule (the primitive is dropped)
 };
 bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<DrawVertex>& out, std::string& err);
 

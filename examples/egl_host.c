@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * egl_host: ge2gl drawing in the host's own OpenGL context (GE2GL_BACKEND_GL_CURRENT), in C99.
  *

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The API 1.2 example hosts (included from examples/CMakeLists.txt), strict C99 like minimal_host:
 #   threaded_host  the GE on one thread, the game on another (pthreads): callbacks that wait on the
 #                  game thread, config.hold_interrupts + ge2gl_interrupt_ack, peek-sync latency;

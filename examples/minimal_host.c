@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * minimal_host: the smallest complete ge2gl host, in C99, using only the C ABI (ge2gl/ge2gl.h).
  *

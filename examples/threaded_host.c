@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * threaded_host: ge2gl driven from two threads, the way an emulator runs the PSP (C99 + POSIX threads).
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rectangle detection and rectangle corners of primitive assembly (see assembly.h).
 #include "geometry/assembly.h"
 

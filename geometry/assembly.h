@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Primitive assembly shared by the software model (softmodel/soft_renderer.cpp) and the GL translator
 // (translator/vertex_pipeline.cpp), so that both backends build the same primitives from a draw:
 // the walk over a PRIM's vertices (assemblePrimitives), the corners of rectangles drawn as
@@ -38,7 +39,7 @@ bool fanQuadAsRect(const RectDetect& rd, const ClipVertex* const q[4], int& tl, 
 
 // Immediate-mode vertices (CMD_X2 … CMD_AP2) as clip vertices, already in drawing coordinates
 // (no transform, lighting or clipping): positions to 1/16 pixel (kept within ±65536 pixels),
-// through-mode texels divided by the level-0 size (§8.10), Q only with texture projection, the
+// through-mode texels divided by the level-0 size (docs/ge-rules.md §8.10), Q only with texture projection, the
 // fog byte as a factor (fogToByte gives the byte back), the secondary colour only with LMODE 1 in
 // transform mode (else none; hardware values in assembly.cpp). `out` is resized to the vertices and
 // `seq` receives their draw order.
@@ -46,12 +47,12 @@ void immediateVertices(const GeState& st, const std::vector<ImmVertex>& in, std:
                        std::vector<u32>& seq);
 
 // Corner (fx, fy) ∈ {0, 1}² (0: left / top) of the rectangle v0–v1 when it is drawn as two
-// triangles (texture projection, §8.2): the corner's position, colour/Z/fog of v1, W = 1, and s
+// triangles (texture projection, ge-rules.md §8.2): the corner's position, colour/Z/fog of v1, W = 1, and s
 // and q from the vertex figure 4-14's orientation gives that corner's column, t from the one it
 // gives the corner's row.
 ScreenVertex rectangleCorner(const ScreenVertex& v0, const ScreenVertex& v1, int fx, int fy);
 
-// The primitive walk both backends share (§3.2, §4, §8.11): splits `seq` (vertex indices in draw
+// The primitive walk both backends share (ge-rules.md §3.2, §4, §8.11): splits `seq` (vertex indices in draw
 // order) into the primitives of `prim` and hands them to `sink`, which provides
 //   void point(u32 i);  void line(u32 i, u32 j);  void rectangle(u32 v0, u32 v1);
 //   void triangle(u32 a, u32 b, u32 c, const u32* ring);  // (a, b, c): winding; c provokes

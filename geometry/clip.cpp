@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Near-plane clipping and the discard rules (see clip.h).
 #include "geometry/clip.h"
 
@@ -22,7 +23,7 @@ inline bool xyOutside(const TransformState& ts, const ClipVertex& v) {
 }  // namespace
 
 int depthSide(const ClipVertex& v) {
-    // 1.00003: the tolerance measured for the depth range (§8.5).
+    // 1.00003: the tolerance measured for the depth range (docs/ge-rules.md §8.5).
     constexpr float kBound = 1.00003f;
     const float r = v.clip[2] / v.clip[3];
     if (r >= kBound) return 1;
@@ -84,8 +85,8 @@ int clipTriangleNear(const TransformState& ts, const ClipVertex& a, const ClipVe
             // A new vertex whose screen X or Y is outside [0, 4096) drops every fan triangle that
             // uses it (PPSSPP Clipper.cpp clip_interpolate marks it, ProcessTriangle skips those
             // sub-triangles). Unlike input vertices, no Z-clamp exemption applies and Z is not
-            // checked: with the exemption Nova gets worse (3.35 → 3.61), without it better (2.55);
-            // checking Z as well drops whole clipped surfaces (Nova 431).
+            // checked: the Nova frametest is worse with the exemption, and checking Z as well
+            // drops whole clipped surfaces there (docs/accuracy.md).
             out[n].outside = xyOutside(ts, out[n]);
             tag[n] = 3 + i;
             ++n;

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: MIT
 // Clipping and discard rules of the software model, run by both backends (manual §10;
-// ge-reference.md §8.5).
+// docs/ge-rules.md §8.5).
 //
 //  - The only geometric clipping is against the near plane (z < −w), whatever CMD_CLE says: CLE
-//    selects only the depth clamp and the discard rule (§8.5, corrected; PPSSPP's
+//    selects only the depth clamp and the discard rule (ge-rules.md §8.5; PPSSPP's
 //    Clipper::ProcessTriangle/ProcessLine clip on negative Z in both cases). There is no X/Y
 //    clipping (drawing is limited by the scissor instead).
 //  - A vertex outside screen X/Y [0, 4096) drops the whole primitive (CLE = 1 exempts vertices
@@ -16,12 +17,12 @@
 
 namespace ge::geo {
 
-// −1 beyond the near plane, +1 beyond the far plane, 0 inside, by |z/w| ≥ 1.00003 (§8.5).
+// −1 beyond the near plane, +1 beyond the far plane, 0 inside, by |z/w| ≥ 1.00003 (ge-rules.md §8.5).
 int depthSide(const ClipVertex& v);
 // Strictly behind the near clip plane z = −w: the part that near clipping removes.
 inline bool beyondNear(const ClipVertex& v) { return v.clip[2] < -v.clip[3]; }
 
-// The §8.5 discard decision for a primitive of n (1–3) transformed, non-through vertices.
+// The ge-rules.md §8.5 discard decision for a primitive of n (1–3) transformed, non-through vertices.
 bool discardPrimitive(const TransformState& ts, const ClipVertex* const* v, int n);
 
 // Point on segment a→b at parameter t (clip space; colours with 8-bit weights as the GE's

@@ -1,4 +1,5 @@
-// Per-vertex lighting (manual §9; ge-reference.md §8.3, §8.9, §8.12). See lighting.h.
+// SPDX-License-Identifier: MIT
+// Per-vertex lighting (manual §9; docs/ge-rules.md §8.3, §8.9, §8.12). See lighting.h.
 #include "geometry/lighting.h"
 
 #include <algorithm>
@@ -8,14 +9,14 @@ namespace ge::geo {
 
 namespace {
 
-// (2·c + 1) per channel of a CMD_xxx RGB colour word (§8.3 "half offset" products).
+// (2·c + 1) per channel of a CMD_xxx RGB colour word (ge-rules.md §8.3 "half offset" products).
 void colorFactor(u32 rgb, int out[3]) {
     for (int i = 0; i < 3; ++i) out[i] = 2 * int((rgb >> (8 * i)) & 0xFF) + 1;
 }
 
 float dot3(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// s = min(512, ceil(512·k + 1)) of §8.3. k is finite here (callers reject NaN); very large or
+// s = min(512, ceil(512·k + 1)) of ge-rules.md §8.3. k is finite here (callers reject NaN); very large or
 // negative products are kept in int range before the conversion.
 int lightScale(float k) {
     float s = std::ceil(k * 512.0f + 1.0f);
@@ -43,7 +44,7 @@ float normalizeOr001(float v[3]) {
 }
 
 float lightPow(float base, float exponent) {
-    // §8.9: exponent ≤ 0 → factor 1; a negative NaN exponent behaves the same (PPSSPP).
+    // ge-rules.md §8.9: exponent ≤ 0 → factor 1; a negative NaN exponent behaves the same (PPSSPP).
     if (exponent <= 0.0f || (std::isnan(exponent) && std::signbit(exponent))) return 1.0f;
     if (base > 0.0f) return std::pow(base, exponent);
     return base;  // a negative base is not raised to the power
@@ -55,14 +56,14 @@ LightingState makeLightingState(const GeState& st, bool vertexHasColor) {
         LightSource& L = ls.lights[n];
         L.enabled = st.LE_on(n);
         if (!L.enabled) continue;
-        const u32 type = st.LTYPE_type(n);  // 3 behaves as spot (§3.6)
+        const u32 type = st.LTYPE_type(n);  // 3 behaves as spot (ge-rules.md §3.6)
         const u32 comp = st.LTYPE_comp(n);  // 3 behaves as 0
         L.directional = type == 0;
         L.spot = type >= 2;
         L.specular = comp == 1;
         L.poweredDiffuse = comp == 2;
         L.pos[0] = st.LX_value(n), L.pos[1] = st.LY_value(n), L.pos[2] = st.LZ_value(n);
-        if (L.directional) normalizeOr001(L.pos);  // §8.12: zero → (0, 0, 1)
+        if (L.directional) normalizeOr001(L.pos);  // ge-rules.md §8.12: zero → (0, 0, 1)
         L.att[0] = st.LKA_value(n), L.att[1] = st.LKB_value(n), L.att[2] = st.LKC_value(n);
         if (L.spot) {
             // LD need not be normalised (manual §9.2.3). One that cannot be (measured on a PSP,
@@ -95,7 +96,7 @@ LightingState makeLightingState(const GeState& st, bool vertexHasColor) {
     ls.matAmbient[3] = 2 * int(st.MAA_alpha()) + 1;
     colorFactor(st.MDC_rgb(), ls.matDiffuse);
     colorFactor(st.MSC_rgb(), ls.matSpecular);
-    // The update flags take effect only when the vertex carries a colour (§3.6).
+    // The update flags take effect only when the vertex carries a colour (ge-rules.md §3.6).
     ls.ambientFromVertex = vertexHasColor && st.MATERIAL_ambient();
     ls.diffuseFromVertex = vertexHasColor && st.MATERIAL_diffuse();
     ls.specularFromVertex = vertexHasColor && st.MATERIAL_specular();
@@ -112,10 +113,10 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
     const int* mdc = ls.diffuseFromVertex ? vc : ls.matDiffuse;
     const int* msc = ls.specularFromVertex ? vc : ls.matSpecular;
 
-    // Emission + global ambient (equation 9-1, §8.3 row "global ambient").
+    // Emission + global ambient (equation 9-1, ge-rules.md §8.3 row "global ambient").
     int color[4], spec[3] = {0, 0, 0};
     for (int i = 0; i < 3; ++i) color[i] = ls.emissive[i] + ((ls.globalAmbient[i] * mac[i]) >> 10);
-    // Lit alpha = AA ⊙ (vertex alpha or MAA) (§8.12); lights add nothing to alpha.
+    // Lit alpha = AA ⊙ (vertex alpha or MAA) (ge-rules.md §8.12); lights add nothing to alpha.
     color[3] = (ls.globalAmbient[3] * mac[3]) >> 10;
 
     for (const LightSource& L : ls.lights) {
@@ -123,7 +124,7 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
         float Lv[3] = {L.pos[0], L.pos[1], L.pos[2]};
         float attspot = 1.0f;
         if (!L.directional) {
-            // L = light − vertex, d = |L| (§8.12); attenuation 9-3 clamped to [0, 1].
+            // L = light − vertex, d = |L| (ge-rules.md §8.12); attenuation 9-3 clamped to [0, 1].
             Lv[0] -= worldPos[0], Lv[1] -= worldPos[1], Lv[2] -= worldPos[2];
             const float d = normalizeOr001(Lv);
             float att = 1.0f / (L.att[0] + L.att[1] * d + L.att[2] * d * d);
@@ -138,7 +139,7 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
             // a spot light straight above a quad with LD = (0, 0, 1) lights it fully, with
             // LD = (1, 1, 1) by cos 0.577), and neither does the reference renderer
             // (GPU/Software/Lighting.cpp: Dot33(spotDir, L)). The light counts when the cosine
-            // is ≥ LKO (§8.9, measured; the manual says >).
+            // is ≥ LKO (ge-rules.md §8.9, measured; the manual says >).
             float raw = L.spotForced >= 0 ? L.spotForced : dot3(L.spotDir, Lv);
             if (std::isnan(raw)) raw = std::signbit(raw) ? 0.0f : 1.0f;
             float spot = 0.0f;
@@ -156,10 +157,10 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
         const float ndotl = dot3(Lv, N);
         float diffuse = ndotl;
         if (L.poweredDiffuse) diffuse = lightPow(ndotl, ls.specularExp);  // 9-7
-        if (diffuse > 0.0f) {  // "Diffuse counts only when N·L > 0" (§8.12)
+        if (diffuse > 0.0f) {  // "Diffuse counts only when N·L > 0" (ge-rules.md §8.12)
             addTerm(color, L.diffuse, mdc, lightScale(attspot * diffuse));
         }
-        if (L.specular && ndotl >= 0.0f) {  // specular only when N·L ≥ 0 (§8.12)
+        if (L.specular && ndotl >= 0.0f) {  // specular only when N·L ≥ 0 (ge-rules.md §8.12)
             // H = normalize(normalize(L) + E), E = (0, 0, 1) (9-8).
             float H[3] = {Lv[0], Lv[1], Lv[2] + 1.0f};
             normalizeOr001(H);

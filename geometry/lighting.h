@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: MIT
 // Per-vertex lighting of the software model, run by both backends (manual §9, equations 9-1 …
-// 9-10; ge-reference.md §3.6, §8.3 last two rows, §8.9, §8.12).
+// 9-10; docs/ge-rules.md §3.6, §8.3 last two rows, §8.9, §8.12).
 //
 // Lighting runs in world space on the world-space normal (normalised, (0, 0, 1) when zero or
-// absent) with the eye vector fixed at (0, 0, 1) (§8.12; manual §9.2.3 says view space — PPSSPP's
-// software renderer, which matches hardware tests, uses world space; ge-reference §9 #11).
-// Colours are combined with the measured fixed-point forms of §8.3:
+// absent) with the eye vector fixed at (0, 0, 1) (ge-rules.md §8.12; manual §9.2.3 says view space — PPSSPP's
+// software renderer, which matches hardware tests, uses world space).
+// Colours are combined with the measured fixed-point forms of ge-rules.md §8.3:
 //   global ambient  ((2·MAC + 1)·(2·AC + 1)) >> 10     per channel, alpha: MAA (or vertex A) with AA
 //   per-light term  ((2·Lc + 1)·(2·Mc + 1)·s) >> 19,  s = min(512, ceil(512·k + 1))
 // where k is attenuation·spot·(N·L, its power, or the specular power).
@@ -27,7 +28,7 @@ struct LightSource {
     // (a zero vector: 0; a NaN or infinite component: 1 or 0 by its sign); −1: LD·L.
     float spotForced = -1;
     float spotExp = 0, spotCutoff = 0;
-    // (2·c + 1) factors of the light colours (§8.3).
+    // (2·c + 1) factors of the light colours (ge-rules.md §8.3).
     int ambient[3] = {}, diffuse[3] = {}, specularColor[3] = {};
 };
 
@@ -38,7 +39,7 @@ struct LightingState {
     int globalAmbient[4] = {};       // (2·AC + 1), alpha (2·AA + 1)
     int matAmbient[4] = {};          // (2·MAC + 1), alpha (2·MAA + 1)
     int matDiffuse[3] = {}, matSpecular[3] = {};
-    // CMD_MATERIAL update flags, only effective when the vertex format has a colour (§3.6).
+    // CMD_MATERIAL update flags, only effective when the vertex format has a colour (ge-rules.md §3.6).
     bool ambientFromVertex = false, diffuseFromVertex = false, specularFromVertex = false;
     bool separateSpecular = false;   // CMD_LMODE = 1: specular goes to the secondary colour
     float specularExp = 0;           // CMD_MK
@@ -46,7 +47,7 @@ struct LightingState {
 
 LightingState makeLightingState(const GeState& st, bool vertexHasColor);
 
-// The GE's power function for lighting (§8.9): an exponent ≤ 0 (or a negative NaN) gives 1, and a
+// The GE's power function for lighting (ge-rules.md §8.9): an exponent ≤ 0 (or a negative NaN) gives 1, and a
 // base ≤ 0 is returned unchanged (not raised to the power).
 float lightPow(float base, float exponent);
 
@@ -57,7 +58,7 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float w
                  const u8 vertexColor[4], u8 primary[4], u8 secondary[3]);
 
 // Normalises v in place and returns its previous length; a zero (or non-finite) vector becomes
-// (0, 0, 1) as the GE's lighting does (§8.12).
+// (0, 0, 1) as the GE's lighting does (ge-rules.md §8.12).
 float normalizeOr001(float v[3]);
 
 }  // namespace ge::geo

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rasterisation of triangles, rectangles, lines and points (see raster.h for the rules followed).
 #include "geometry/raster.h"
 
@@ -32,8 +33,7 @@ inline double recipW(float w) {
 // is PPSSPP's software renderer (TriangleEdge::Start, "centerOff = SCREEN_SCALE_FACTOR / 2 − 1"),
 // which made the reference renders: coverage, colours, depth, fog and texture coordinates all come
 // from the edge functions there. Sampling at 16x + 8 instead shifts every texture coordinate by a
-// sixteenth of a pixel, which the references show clearly (median MSE over the 20 game dumps fell
-// from ~20 to ~2 with this change).
+// sixteenth of a pixel, which the references show clearly (docs/accuracy.md).
 constexpr int kTriSample = 7;
 
 inline int sampleRowsOfTriangle(int minY, int maxY, int& y1, int& y2) {
@@ -64,7 +64,7 @@ void clipRows(const RasterParams& rp, int& y1, int& y2) {
     y2 = std::min(y2, rp.clipY2);
 }
 
-// Level of detail from per-pixel texture-coordinate steps (§6.6 mode 0).
+// Level of detail from per-pixel texture-coordinate steps (docs/ge-rules.md §6.6 mode 0).
 inline float lodFromSteps(const RasterParams& rp, double ds, double dt) {
     return texLog2(float(std::max(std::fabs(ds) * rp.texW0, std::fabs(dt) * rp.texH0)));
 }
@@ -163,8 +163,8 @@ inline bool refRightOrFlatBottom(const ScreenVertex& p, const ScreenVertex& a, c
     return s64(p.x) < s64(a.x) + (s64(b.x) - a.x) * (s64(p.y) - a.y) / (s64(b.y) - a.y);
 }
 
-// A zero-area triangle as the reference renders rasterise it — a reference quirk: ref §8.11 says
-// the GE draws nothing for one (the renderer's caller decides whether such triangles get here).
+// A zero-area triangle as the reference renders rasterise it — a reference quirk (ge-rules.md §8.11;
+// the renderer's caller decides whether such triangles get here).
 // PPSSPP's software renderer submits a triangle as (a, b, c) and again as (c, b, a) with culling
 // off (TransformUnit::SendTriangle; one order only with culling on, not modelled: no reference
 // dump tells) and keeps an order unless its cross product is negative (BinManager::AddTriangle),
@@ -373,11 +373,9 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
                 // (E0·z0 + E1·z1 + E2·z2)·(1/area) in single precision, attribute order, converted
                 // with Vec4<float>::Cast<int>, which on x86-64 is cvtps2dq: round to nearest, ties
                 // to even (not truncation). Coplanar geometry drawn twice (decals, Coded Arms' grate
-                // over its lava under GEQUAL) z-fights exactly where these roundings decide.
-                // Frametests within MSE 0.1: 10 -> 16 (Coded Arms 89 -> 0.0001, Pursuit Force
-                // UCUS 2.74 -> 0.012, Virtua Tennis 6.37 -> 0.089, Nova 2.55 -> 0.030, Monster
-                // Hunter 0.32 -> 0.017); the integer plane it replaces, and float with truncation,
-                // both lose.
+                // over its lava under GEQUAL) z-fights exactly where these roundings decide; an
+                // integer depth plane and float with truncation both lose against the references
+                // (docs/accuracy.md).
                 const float zf = interpolateF(oz[0], oz[1], oz[2], fw0, fw1, fw2, wsumRecip);
                 const float zr = std::nearbyint(zf);  // default rounding mode: nearest, ties to even
                 f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));
@@ -452,10 +450,10 @@ TriangleConstants triangleConstants(const RasterParams& rp, const ScreenVertex& 
 bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, RectSetup& out) {
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    if (xl == xr || yt == yb) return false;  // zero width or height draws nothing (§8.11)
+    if (xl == xr || yt == yb) return false;  // zero width or height draws nothing (ge-rules.md §8.11)
     // The reference renderer (PPSSPP's software GE, Rasterizer.cpp DrawRectangle) walks the box in
     // 2×2 pixel quads starting at the first covered pixel: a left/top edge up to the pixel centre
-    // includes the pixel (centres 16·p + 8 ≥ edge, §8.1). Towards the far edge, the first pixel of
+    // includes the pixel (centres 16·p + 8 ≥ edge, ge-rules.md §8.1). Towards the far edge, the first pixel of
     // each pair needs its centre strictly inside (16·p + 8 < edge) but the second pixel of a pair
     // is also drawn when its centre lies exactly on the edge — so an edge on a pixel centre covers
     // that pixel only when it falls on the odd pixel of a pair counted from the first one.
@@ -473,11 +471,11 @@ bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const Screen
     const int px2 = lastCovered(px1, xr, rp.clipX2);
     const int py2 = lastCovered(py1, yb, rp.clipY2);
     if (px1 > px2 || py1 > py2) return false;
-    // Texture coordinates in single precision as the reference steps them (§8.2 orientation): the
+    // Texture coordinates in single precision as the reference steps them (ge-rules.md §8.2 orientation): the
     // change per two pixels, 2·Δ / (size in pixels), from the box's top-left corner moved to the
     // first pixel centre; then added once per pair of columns along a row and once per pair of rows
     // down the box, the odd pixel of a pair adding half a step. The level of detail comes from those
-    // half steps, per quad (§6.6).
+    // half steps, per quad (ge-rules.md §6.6).
     float rowS = 0, rowT = 0, stxS = 0, stxT = 0, styS = 0, styT = 0;
     if (rp.textured) {
         const float diffX = float(xr - xl) / 16.0f, diffY = float(yb - yt) / 16.0f;
@@ -559,13 +557,13 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
     // The reference renderer's line walk (PPSSPP GPU/Software DrawLine): max(|dx|, |dy|) / 16
     // steps of (dx, dy) / steps accumulated in double precision from the start vertex (one
     // subpixel back along an axis the line runs backwards on), each step drawing the pixel that
-    // contains the truncated position; the end pixel is left out (§8.11). A line shorter than one
+    // contains the truncated position; the end pixel is left out (ge-rules.md §8.11). A line shorter than one
     // pixel backwards is shortened by one subpixel so it does not run into the next pixel.
     // Positions outside the line's bounding box (rounded out to whole pixels) or the clip
     // rectangle draw nothing.
     s64 dx = s64(v1.x) - v0.x, dy = s64(v1.y) - v0.y;
     const s64 steps = std::max(dx < 0 ? -dx : dx, dy < 0 ? -dy : dy) / 16;
-    if (steps == 0) return;  // zero-length lines draw nothing (§8.11)
+    if (steps == 0) return;  // zero-length lines draw nothing (ge-rules.md §8.11)
     if (dx < 0 && dx >= -16) ++dx;
     if (dy < 0 && dy >= -16) ++dy;
     const double xinc = double(dx) / double(steps), yinc = double(dy) / double(steps);
@@ -574,7 +572,7 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
     const s64 by1 = std::max<s64>(std::min(v0.y, v1.y) & ~s64(15), s64(rp.clipY1) * 16);
     const s64 bx2 = std::min<s64>(std::max(v0.x, v1.x) | 15, s64(rp.clipX2) * 16 + 15);
     const s64 by2 = std::min<s64>(std::max(v0.y, v1.y) | 15, s64(rp.clipY2) * 16 + 15);
-    // Gouraud lines interpolate in whole steps, flat lines take the end vertex's colours (§8.1).
+    // Gouraud lines interpolate in whole steps, flat lines take the end vertex's colours (ge-rules.md §8.1).
     // (The reference renderer's line code has the flat/Gouraud choice inverted — it interpolates
     // flat lines and gives Gouraud lines with different end colours the end colour; no frametest
     // tells the two apart, so the manual's rule stands.)

@@ -1,25 +1,26 @@
+// SPDX-License-Identifier: MIT
 // Rasterisation as the software model does it: triangles, rectangles, lines and points in drawing
-// coordinates → Fragments (manual §3.6, §4, §8; ge-reference.md §8.1, §8.2, §8.6, §8.11, §6.6).
+// coordinates → Fragments (manual §3.6, §4, §8; docs/ge-rules.md §8.1, §8.2, §8.6, §8.11, §6.6).
 //
-// Positions are fixed point with 4 fraction bits (1/16 pixel, §8.1); pixel centres are at +0.5
-// (§3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7, as the reference renderer
+// Positions are fixed point with 4 fraction bits (1/16 pixel, ge-rules.md §8.1); pixel centres are at +0.5
+// (manual §3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7, as the reference renderer
 // (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
 //   - triangles: top-left fill rule — pixels whose sample point is exactly on a right edge or on a
-//     bottom edge parallel to X are not drawn (manual Figure 4-9, §8.1); zero-area triangles draw
+//     bottom edge parallel to X are not drawn (manual Figure 4-9, ge-rules.md §8.1); zero-area triangles draw
 //     the samples exactly on their line when the fill rule allows it, as the reference renderer
-//     (not ge-reference §8.11's "nothing");
-//   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (§8.1), plus a far
+//     does (ge-rules.md §8.11);
+//   - rectangles: centres in [x1, x2) × [y1, y2), independent of vertex order (ge-rules.md §8.1), plus a far
 //     edge exactly on the centre of the second pixel of a 2×2 quad (the reference's quad walk);
 //   - lines: the reference renderer's walk of max(|dx|, |dy|) / 16 double-precision steps,
-//     leaving out the end pixel (§8.11);
-//   - points: the one pixel containing the vertex (§4.1).
-// Attributes (§8.1): triangle Z and colours interpolated linearly in screen space in single
+//     leaving out the end pixel (ge-rules.md §8.11);
+//   - points: the one pixel containing the vertex (manual §4.1).
+// Attributes (ge-rules.md §8.1): triangle Z and colours interpolated linearly in screen space in single
 // precision and rounded to nearest (the reference renderer's x86 arithmetic); fog in
 // screen space; texture coordinates perspective-correct (linear for rectangles and through mode,
 // where W = 1). The level of detail for TLEVEL mode 0 is derived per 2×2 pixel quad from the
-// change of s across X and of t down Y (§6.6).
+// change of s across X and of t down Y (ge-rules.md §6.6).
 //
-// Everything is limited to the clip rectangle (scissor ∩ REGION2, §8.6) and to the rows of one
+// Everything is limited to the clip rectangle (scissor ∩ REGION2, ge-rules.md §8.6) and to the rows of one
 // Band, so several threads can rasterise the same primitives into disjoint rows.
 //
 // Both backends run this code: the software model rasterises everything with it; the GL
@@ -47,9 +48,9 @@ struct ScreenVertex {
 
 // Per-draw rasteriser settings.
 struct RasterParams {
-    // Inclusive clip rectangle in drawing coordinates (scissor ∩ REGION2, §8.6).
+    // Inclusive clip rectangle in drawing coordinates (scissor ∩ REGION2, ge-rules.md §8.6).
     int clipX1 = 0, clipY1 = 0, clipX2 = -1, clipY2 = -1;
-    bool gouraud = true;     // CMD_SHADE (rectangles always use their second vertex, §8)
+    bool gouraud = true;     // CMD_SHADE (rectangles always use their second vertex, manual §8)
     bool textured = false;   // compute s, t (and lod)
     bool needLod = false;    // TLEVEL mode 0: compute the per-quad level of detail
     bool needW = false;      // TLEVEL mode 2: per-pixel clip W
@@ -100,13 +101,13 @@ private:
 };
 
 // Triangle; the vertex order may be either winding (culling is the caller's job). `provoking`
-// gives the flat-shading colour (§8.1: the last vertex of the triangle).
+// gives the flat-shading colour (ge-rules.md §8.1: the last vertex of the triangle).
 void rasterTriangle(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
                     const ScreenVertex& provoking, const Band& band, FragmentSink& sink);
-// Rectangle from two opposite corners; colour, Z and fog from v1, texture orientation per §8.2.
+// Rectangle from two opposite corners; colour, Z and fog from v1, texture orientation per ge-rules.md §8.2.
 void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
                      FragmentSink& sink);
-// Line from v0 to v1 without its end pixel; flat colour from v1 (§8.1).
+// Line from v0 to v1 without its end pixel; flat colour from v1 (ge-rules.md §8.1).
 void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
                 FragmentSink& sink);
 void rasterPoint(const RasterParams& rp, const ScreenVertex& v, const Band& band, FragmentSink& sink);
@@ -122,7 +123,7 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
 u64 primitivePixelBound(const RasterParams& rp, PrimKind kind, const ScreenVertex* const* v, int y1, int y2);
 
 // Helpers exposed for tests.
-// Fog factor → 8 bits (§8.9): 0 for f ≤ 0 (sign set), 255 for f ≥ 1, else floor(f·256).
+// Fog factor → 8 bits (ge-rules.md §8.9): 0 for f ≤ 0 (sign set), 255 for f ≥ 1, else floor(f·256).
 u8 fogToByte(float f);
 // log2 as the software GE approximates it: exponent plus the mantissa as a linear fraction
 // (8 fraction bits), sign ignored; 0 gives −127. Exact for powers of two.
@@ -154,7 +155,7 @@ bool rectangleSetup(const RasterParams& rp, const ScreenVertex& v0, const Screen
 // 1/w as rasterTriangle weights perspective-correct texture coordinates with (w near 0 kept away
 // from a division by zero).
 double perspectiveRecip(float w);
-// Level of detail from the per-pixel steps of s across X and of t down Y (§6.6 mode 0), as
+// Level of detail from the per-pixel steps of s across X and of t down Y (ge-rules.md §6.6 mode 0), as
 // rasterTriangle / rasterRectangle form Fragment::lod.
 float lodFromTexSteps(const RasterParams& rp, double ds, double dt);
 // Where rasterTriangle samples pixel (x, y): (16·x + o, 16·y + o) in 1/16 pixel, o returned here.

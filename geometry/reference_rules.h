@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The reference renderer's draw-level state optimizations that change pixels, as rules on GeState
 // that both backends apply: the software model when it builds a draw's pixel state
 // (softmodel/pixel.cpp buildPixelState), the GL translator when it makes the draw's shader key

@@ -1,4 +1,5 @@
-// Bezier and spline patch tessellation (manual §5, §13.1.1; ge-reference.md §3.2).
+// SPDX-License-Identifier: MIT
+// Bezier and spline patch tessellation (manual §5, §13.1.1; docs/ge-rules.md §3.2).
 //
 // Control point (u, v) is vertex number v·Ucount + u (through the index buffer when IT ≠ 0), read
 // with VertexReader (morphing applied, skinning not: the reference does not apply it to patches).
@@ -74,7 +75,7 @@ std::vector<SplineSpan> splineSpans(int count, int knotType) {
     // (1/8, 3/8, 3/8, 1/8). Still a partition of unity with exact ends, so a flat patch stays
     // flat, but its tessellated vertices sit at other places: GachiTora draws its button and
     // speech-bubble text as such 4x4 splines, and only these weights reproduce the reference's
-    // bilinear texel fractions there (MSE 0.19 -> 0.016).
+    // bilinear texel fractions there (docs/accuracy.md, "Reference quirks").
     if (count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
     return spans;
 }
@@ -151,8 +152,8 @@ struct Surface {
     // depends on this order; it moves tessellated vertices by a few ulps, which decides integer
     // Z at vertices and so z-fighting between coplanar patches: Coded Arms draws its floor grate
     // over its lava with GEQUAL, and the reference shows the lava in two streaks around the one
-    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (with depth
-    // interpolation rounded to nearest as in raster.cpp: Coded Arms 89.0 -> 0.0001).
+    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (together with
+    // depth interpolation rounded to nearest as in raster.cpp; docs/accuracy.md).
     // The 16 control points of the point's patch, P[b][a] (row b along v, column a along u),
     // looked up once per output vertex rather than once per attribute.
     using Patch16 = const DecodedVertex* [4][4];
@@ -200,7 +201,7 @@ struct Surface {
             std::copy((*cps)[0].color, (*cps)[0].color + 4, out.color);
         }
         if (!hasUV) {
-            // Generated texture coordinates: S = patch_u + i/divU, T = patch_v + j/divV (§3.2, manual §13.1.1).
+            // Generated texture coordinates: S = patch_u + i/divU, T = patch_v + j/divV (ge-rules.md §3.2, manual §13.1.1).
             out.uv[0] = float(pu) + tu;
             out.uv[1] = float(pv) + tv;
         }
@@ -221,7 +222,7 @@ struct Surface {
                 len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
             }
             if (len2 > 1e-30f) {
-                // PFACE = 1 reverses the generated normals (§3.2).
+                // PFACE = 1 reverses the generated normals (ge-rules.md §3.2).
                 const float inv = (reverseFace ? -1.0f : 1.0f) / std::sqrt(len2);
                 for (int c = 0; c < 3; ++c) out.nrm[c] = n[c] * inv;
             }
@@ -280,7 +281,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     out.prim = p.patchPrim == 0 ? GE_PRIM_TRIANGLES : p.patchPrim == 1 ? GE_PRIM_LINES : GE_PRIM_POINTS;
 
     const u32 ucount = p.ucount, vcount = p.vcount;
-    // Fewer than 4 control points in either direction draws nothing (§3.2, observed: PPSSPP).
+    // Fewer than 4 control points in either direction draws nothing (ge-rules.md §3.2, observed: PPSSPP).
     if (ucount < 4 || vcount < 4) return true;
     const u32 divU = std::max<u32>(p.divU, 1), divV = std::max<u32>(p.divV, 1);
     const u32 patchesU = p.spline ? ucount - 3 : (ucount - 1) / 3;
@@ -310,7 +311,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     s.hasWeights = reader.hasWeights();
     s.weightCount = reader.weightCount();
     s.reverseFace = p.reverseFace;
-    // Normals are generated when the vertex has none and something reads them: lighting (§3.2),
+    // Normals are generated when the vertex has none and something reads them: lighting (ge-rules.md §3.2),
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
     s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));
     if (p.spline) {

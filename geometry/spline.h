@@ -1,4 +1,5 @@
-// Bezier and spline patch tessellation (manual §5; ge-reference.md §3.2). Both backends draw the
+// SPDX-License-Identifier: MIT
+// Bezier and spline patch tessellation (manual §5; docs/ge-rules.md §3.2). Both backends draw the
 // output through their usual vertex path (transform.h onwards).
 #pragma once
 #include <string>

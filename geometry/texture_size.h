@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The texture size rule both backends share: the size the GE scales texture coordinates by, and
 // the bounds of the texel index. The software model (geometry/transform.cpp and assembly.cpp for
 // through mode's texel coordinates, softmodel/sampler.cpp TexLevel::setSize, the level of detail's
@@ -9,7 +10,7 @@
 // (GeState::textureWidth/Height, the decoded level), but it scales texture coordinates by the
 // full 2^n: s·2^n in transform mode, and through mode's texel coordinates u are divided by 2^n
 // (so that the sampler's ·2^n gives u back). The texel index is then clamped to
-// min(2^n, 512) − 1, or wrapped with (2^n − 1) & 511 (ref §8.10). Measured on a PSP (pspautotests
+// min(2^n, 512) − 1, or wrapped with (2^n − 1) & 511 (docs/ge-rules.md §8.10). Measured on a PSP (pspautotests
 // gpu/textures/size, tests/conformance/textures_size.cpp): a 1024-wide row drawn over 256 pixels
 // reads texel 2 at pixel 0 and texel 510 at pixel 127 (0xf00002, 0xf001fe), one 32768 wide texel
 // 64 at pixel 0 (0xf00040), in transform mode (s 0..1) and in through mode (u 0..w) alike; a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Vertex processing (see transform.h).
 #include "geometry/transform.h"
 
@@ -11,7 +12,7 @@ namespace ge::geo {
 
 namespace {
 
-// One term of a matrix row as the GE forms it. The GE has no IEEE specials (ge-reference §1.2): a
+// One term of a matrix row as the GE forms it. The GE has no IEEE specials (docs/ge-rules.md §1.2): a
 // zero or denormal factor gives a zero term whatever the other factor is, and an exponent field of
 // 255 (IEEE inf/NaN) is an ordinary exponent, ±1.m·2^128. So a NaN coordinate times a zero matrix
 // element contributes nothing: Beam 'em up draws its text as transform-mode rectangles whose second
@@ -39,7 +40,7 @@ inline float geTerm(float a, float b) {
 }  // namespace
 
 void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
-    // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; §3.4)
+    // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
     for (int r = 0; r < 3; ++r)
         out[r] = (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
 }
@@ -76,13 +77,12 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
 
     // PPSSPP's software renderer (TransformUnit ComputeTransformState, POS_TO_CLIP) multiplies the
     // 4×4 forms of world, view and projection once per draw and transforms positions with that
-    // product: its float rounding differs from three chained products (Pursuit Force UCES
-    // 0.0125 → 0.0062, Monster Hunter slightly). Fog does not change this (its depth is computed
-    // separately: Monster Hunter 0.325 → 0.320, Frontier Gate 0.0136 → 0.0111, Pursuit Force
-    // UCUS 2.748 → 2.744), nor does lighting when every enabled light is directional (lighting then
+    // product: its float rounding differs from three chained products, and the references show
+    // the difference (docs/accuracy.md). Fog does not change this (its depth is computed
+    // separately), nor does lighting when every enabled light is directional (lighting then
     // needs only the world normal). A positional or spot light needs the world position, so the
     // position goes model → world and then through view·proj folded into one matrix
-    // (WORLD_TO_CLIP; GachiTora 0.876 → 0.874).
+    // (WORLD_TO_CLIP).
     bool needWorldPos = false;
     if (st.LTE_on()) {
         for (int n = 0; n < 4; ++n)
@@ -113,9 +113,9 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     }
 
     const u32 map = st.TMAP_mode();
-    ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (§3.8)
+    ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (ge-rules.md §3.8)
     ts.projSource = int(st.TMAP_proj());
-    // A texture-projection rectangle is drawn as triangles (§8.2) — unless the texture matrix
+    // A texture-projection rectangle is drawn as triangles (ge-rules.md §8.2) — unless the texture matrix
     // gives Q = 1 for every vertex: its Q column is zero for X and Y, for Z too (or the source is
     // UV, whose Z is 0), and its translation Q is exactly 1. Then the rectangle keeps the
     // rectangle walk, as PPSSPP's software renderer does (Rasterizer.cpp ComputeRasterizerState
@@ -128,7 +128,7 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
 
     ts.fog = st.FGE_on();
     if (ts.fog) {
-        // §8.9: FOG2 infinite → ±262144; FOG1 infinite or NaN → f is ±∞·FOG2 for the whole
+        // ge-rules.md §8.9: FOG2 infinite → ±262144; FOG1 infinite or NaN → f is ±∞·FOG2 for the whole
         // draw: 1 when the signs agree, 0 otherwise or when FOG2 = 0 (∞·0 is NaN → 0).
         float end = st.FOG1_value(), slope = st.FOG2_value();
         if (!std::isfinite(slope)) slope = std::signbit(slope) ? -262144.0f : 262144.0f;
@@ -142,7 +142,7 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     ts.normalReverse = st.NREV_on();
     if (ts.texMap == 2) {
         // Shade mapping uses the raw light positions, normalised (zero → (0, 0, 1)), whatever
-        // the light's type and even with lighting off (§8.10).
+        // the light's type and even with lighting off (ge-rules.md §8.10).
         const int lu = int(st.TSHADE_u()), lv = int(st.TSHADE_v());
         const int lights[2] = {lu, lv};
         for (int k = 0; k < 2; ++k) {
@@ -164,7 +164,7 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     float zs = v.clip[2] * ts.sz / w + ts.tz;
     if (ts.sprite) {
         // Transform-mode sprites (RECTANGLES), measured on a PSP: the viewport arithmetic is
-        // float24, the GE's own float (ge-reference §1.2: its registers and matrices keep the top
+        // float24, the GE's own float (ge-rules.md §1.2: its registers and matrices keep the top
         // 15 mantissa bits) — the clip coordinate, its product with the scale and the quotient by
         // W each cut toward zero, then the centre added. gpu/filtering/nearest and linear: a
         // sprite's far corner at −1 + 2/240 with SX = 240 lands at 1810.003, past the pixel edge
@@ -179,7 +179,7 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     }
     bool outside = false, zClamped = false;
     if (ts.clipEnable) {
-        // CLE = 1: Z is clamped, and a clamped vertex is exempt from the X/Y range check (§8.5;
+        // CLE = 1: Z is clamped, and a clamped vertex is exempt from the X/Y range check (ge-rules.md §8.5;
         // PPSSPP's software renderer, matched to hardware tests, exempts exactly these).
         if (!(zs >= 0.0f)) zs = 0.0f, zClamped = true;
         else if (zs > 65535.0f) zs = 65535.0f, zClamped = true;
@@ -189,12 +189,12 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     if (!zClamped && !(xs >= 0.0f && xs < 4096.0f && ys >= 0.0f && ys < 4096.0f)) outside = true;
     if (rangeCheck) v.outside = outside;
 
-    // §8.1: round to 1/16 pixel, rounding up from 0.625 of a subpixel. The screen offset is taken
+    // ge-rules.md §8.1: round to 1/16 pixel, rounding up from 0.625 of a subpixel. The screen offset is taken
     // off in float BEFORE the truncating conversion, as the reference renderer does (PPSSPP
     // TransformUnit ClipToScreenInternal: int(x·16 + 0.375 − OFFX16)): a vertex left of / above
     // the drawing area therefore rounds toward zero, not down. For on-screen vertices the two
     // orders agree; off-screen ones move 1/16 pixel, which shifts the whole interpolation of big
-    // triangles (10 of the 20 game dumps within MSE 0.1 with this rule, 7 without). The value is
+    // triangles (the frametests need this order, docs/accuracy.md). The value is
     // limited first so wild (dropped or exempt) vertices convert safely; ±2^20 sixteenths is far
     // off screen.
     auto limit16 = [](double t) {
@@ -208,8 +208,8 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     // edge at 1920.0039 samples as from 1920.0625; gpu/filtering/precision*3d's corner at screen
     // X 2048.0 with OFFSETX 2048 + i/16 lands at −i/16, where the float subtraction above keeps
     // −(i − 1)/16). Triangles, lines and points keep the reference renderer's rule above: applied
-    // to every primitive, this rule leaves 1 of the 20 frametests within MSE 0.1 (19 without) and
-    // passes no further hardware checkpoint (docs/conformance.md).
+    // to every primitive, this rule passes no further hardware checkpoint and costs most
+    // frametests (docs/conformance.md, "Sprites").
     // Exact in double: f·16 is a float times a power of two.
     auto spriteTo16 = [&](float f, int off) { return limit16(std::ceil(double(f) * 16.0) - off); };
     v.sv.x = ts.sprite ? spriteTo16(xs, ts.offX16) : to16(xs, ts.offX16);
@@ -221,8 +221,8 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
 void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVertex& out) {
     ScreenVertex& sv = out.sv;
     if (ts.through) {
-        // Drawing coordinates as given (§8.1), Z 0–65535, texels divided by the level-0 size
-        // (§8.10); no lighting, fog or clipping (§5.5).
+        // Drawing coordinates as given (ge-rules.md §8.1), Z 0–65535, texels divided by the level-0 size
+        // (ge-rules.md §8.10); no lighting, fog or clipping (ge-rules.md §5.5).
         auto to16 = [](float f) {
             float t = f * 16.0f;
             if (!(t > -1048576.0f)) t = -1048576.0f;
@@ -247,7 +247,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     float model[3] = {in.pos[0], in.pos[1], in.pos[2]};
     float normal[3] = {0.0f, 0.0f, 1.0f};
     if (ts.hasNormal) {
-        const float k = ts.normalReverse ? -1.0f : 1.0f;  // CMD_NREV (§9)
+        const float k = ts.normalReverse ? -1.0f : 1.0f;  // CMD_NREV (manual §9)
         normal[0] = in.nrm[0] * k, normal[1] = in.nrm[1] * k, normal[2] = in.nrm[2] * k;
     }
     float world[3], viewPos[3];
@@ -257,7 +257,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
     else mulPoint4x4(ts.proj, viewPos, out.clip);
 
-    // Fog factor per vertex from view-space Z (§3.9).
+    // Fog factor per vertex from view-space Z (ge-rules.md §3.9).
     if (!ts.fog) sv.fog = 1.0f;
     else if (ts.fogFixed >= 0) sv.fog = float(ts.fogFixed);
     else sv.fog = (viewPos[2] + ts.fogEnd) * ts.fogSlope;
@@ -269,7 +269,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         normalizeOr001(worldNormal);
     }
 
-    // Texture coordinates (§13.1, §13.2).
+    // Texture coordinates (manual §13.1, §13.2).
     sv.q = 1.0f;
     switch (ts.texMap) {
     case 1: {
@@ -295,7 +295,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         break;
     }
     case 2: {
-        // Shade mapping: s = (normalize(Lu)·N + 1)/2, t likewise (§13.1.3, §8.10).
+        // Shade mapping: s = (normalize(Lu)·N + 1)/2, t likewise (manual §13.1.3; ge-rules.md §8.10).
         const float* lu = ts.shadeLight[0];
         const float* lv = ts.shadeLight[1];
         const float du = lu[0] * worldNormal[0] + lu[1] * worldNormal[1] + lu[2] * worldNormal[2];
@@ -311,7 +311,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         break;
     }
 
-    // Colours (§9.2.4): lit, or the vertex colour (MAC/MAA without one) and no secondary.
+    // Colours (manual §9.2.4): lit, or the vertex colour (MAC/MAA without one) and no secondary.
     if (ts.lighting) {
         lightVertex(ts.light, world, worldNormal, in.color, sv.color, sv.secondary);
     } else {

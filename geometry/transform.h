@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: MIT
 // Vertex processing with the software model's arithmetic, run by both backends (manual §3, §7, §9,
-// §13.1, §13.2, §16; ge-reference.md §3.4, §3.5, §3.9, §5.5, §8.1, §8.9, §8.10).
+// §13.1, §13.2, §16; docs/ge-rules.md §3.4, §3.5, §3.9, §5.5, §8.1, §8.9, §8.10).
 //
 // Model → world → view (3×4 matrices) → clip (4×4), viewport to screen (Xs = SX·Xc/Wc + TX),
-// screen → drawing coordinates in 1/16 pixel with x16 = trunc(Xs·16 + 0.375) − OFFSETX (§8.1;
+// screen → drawing coordinates in 1/16 pixel with x16 = trunc(Xs·16 + 0.375 − OFFSETX) (ge-rules.md §8.1;
 // transform-mode sprites: ceil(Xs·16) − OFFSETX, Xs from float24 arithmetic, measured on a PSP),
 // screen Z to 16 bits; per-vertex fog factor, lighting and texture-coordinate generation.
 // Through mode skips all of it: positions are drawing coordinates, texture coordinates texels.
@@ -22,16 +23,16 @@ inline int depthToInt(float z) { return z >= 0.0f ? (z <= 65535.0f ? int(z) : 65
 struct ClipVertex {
     float clip[4] = {0, 0, 0, 1};  // clip coordinates (through mode: unused)
     ScreenVertex sv;               // drawing-space vertex (x, y, z valid after projectToScreen)
-    // The vertex breaks the screen range rule of §8.5 (X/Y outside [0, 4096), or with CLE = 0 a
+    // The vertex breaks the screen range rule of ge-rules.md §8.5 (X/Y outside [0, 4096), or with CLE = 0 a
     // screen Z outside [0, 65536)): a primitive using it is dropped.
     bool outside = false;
-    bool valid = true;             // false: unreadable memory or no position (dropped, §8.11)
+    bool valid = true;             // false: unreadable memory or no position (dropped, ge-rules.md §8.11)
 };
 
 // Per-draw constants derived once from GeState.
 struct TransformState {
     bool through = false;
-    bool clipEnable = false;  // CMD_CLE: depth clamp and the discard rule (§8.5); not near clipping
+    bool clipEnable = false;  // CMD_CLE: depth clamp and the discard rule (ge-rules.md §8.5); not near clipping
     float world[12] = {}, view[12] = {}, proj[16] = {}, tgen[12] = {};
     float sx = 0, sy = 0, sz = 0, tx = 0, ty = 0, tz = 0;
     int offX16 = 0, offY16 = 0;  // OFFSETX/OFFSETY in 1/16 pixel
@@ -48,7 +49,7 @@ struct TransformState {
     float su = 1, sv = 1, tu = 0, tv = 0;
     float invTexW0 = 1, invTexH0 = 1;  // 1 / level-0 2^n, unclamped (through-mode texel coordinates; texture_size.h)
     bool fog = false;
-    int fogFixed = -1;           // −1: per vertex; 0/1: the whole draw gets f = 0/1 (§8.9 specials)
+    int fogFixed = -1;           // −1: per vertex; 0/1: the whole draw gets f = 0/1 (ge-rules.md §8.9 specials)
     float fogEnd = 0, fogSlope = 0;
     bool lighting = false;
     LightingState light;
@@ -76,10 +77,10 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
 void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVertex& out);
 
 // Viewport + drawing-coordinate mapping of out.clip into out.sv.x/y/z (and sv.w). With
-// `rangeCheck` the §8.5 flags are set; vertices made by near clipping are not range checked.
+// `rangeCheck` the ge-rules.md §8.5 flags are set; vertices made by near clipping are not range checked.
 void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck);
 
-// 3×4 (GE element order, §3.4) times (x, y, z, 1) and the 3×3 part times a direction.
+// 3×4 (GE element order, ge-rules.md §3.4) times (x, y, z, 1) and the 3×3 part times a direction.
 void mulPoint3x4(const float m[12], const float in[3], float out[3]);
 void mulDir3x4(const float m[12], const float in[3], float out[3]);
 void mulPoint4x4(const float m[16], const float in[3], float out[4]);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/disasm.h"
 
 #include <cstdio>

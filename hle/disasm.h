@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GE disassembler: names every command and field (from ge_cmds.def / ge_fields.def).
 #pragma once
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/ge_engine.h"
 
 #include <algorithm>
@@ -204,7 +205,7 @@ void GeEngine::matrixData(u8 op, u32 arg) {
     case GE_CMD_PROJD: m = state_.proj; idx = &state_.projNum; size = 16; break;
     default: m = state_.tgen; idx = &state_.tgenNum; size = 12; break;
     }
-    // Data past the end is dropped for rendering; the index keeps counting (ge-reference §3.4).
+    // Data past the end is dropped for rendering; the index keeps counting (docs/ge-rules.md §3.4).
     if (*idx < size) {
         if (m[*idx] != v || std::signbit(m[*idx]) != std::signbit(v)) {
             m[*idx] = v;
@@ -244,7 +245,7 @@ void GeEngine::execute(u32 word) {
         break;
     case GE_CMD_CALL: {
         // The hardware has two return registers (RADR1/2, OADR1/2); a third level is refused, as
-        // the uOFW firmware does (ge-reference §4.3).
+        // the uOFW firmware does (ge-rules.md §4.3).
         if (list_.callDepth >= 2) {
             fail(GeError::CallDepth, "CALL nested deeper than 2 levels");
             break;
@@ -267,7 +268,7 @@ void GeEngine::execute(u32 word) {
         }
         break;
     case GE_CMD_END: doEnd(arg); break;
-    case GE_CMD_SIGNAL: ++stats_.signals; break;  // acted on at the following END (§4.4)
+    case GE_CMD_SIGNAL: ++stats_.signals; break;  // acted on at the following END (ge-rules.md §4.4)
     case GE_CMD_FINISH:
         ++stats_.finishes;
         renderer_->finish();
@@ -290,7 +291,7 @@ void GeEngine::execute(u32 word) {
     case GE_CMD_TSYNC: renderer_->textureSync(); break;
     case GE_CMD_AP2: doImmediate(arg); break;
     default:
-        if (!geCmdKnown(op)) ++stats_.unknownCommands;  // unknown opcodes are no-ops (§2)
+        if (!geCmdKnown(op)) ++stats_.unknownCommands;  // unknown opcodes are no-ops (ge-rules.md §2)
         break;
     }
     list_.lastOp = op;
@@ -299,11 +300,11 @@ void GeEngine::execute(u32 word) {
 
 void GeEngine::doPrim(u32 arg) {
     const u32 count = arg & 0xFFFF;
-    const u32 type = (arg >> 16) & 7;  // bits 23..19 ignored: type 8 acts as 0 (§3.2)
+    const u32 type = (arg >> 16) & 7;  // bits 23..19 ignored: type 8 acts as 0 (ge-rules.md §3.2)
     const bool cont = type == GE_PRIM_KEEP_PREVIOUS;
     const GePrimType prim = cont ? lastPrim_ : GePrimType(type);
     if (!cont) lastPrim_ = prim;
-    if (count == 0) return;  // draws nothing, pointers unchanged (§8.11)
+    if (count == 0) return;  // draws nothing, pointers unchanged (ge-rules.md §8.11)
 
     PrimPacket pkt;
     pkt.state = &state_;
@@ -321,7 +322,7 @@ void GeEngine::doPrim(u32 arg) {
     chargePixels();
     latchVertexAttributes(pkt);
 
-    // Pointers advance past the consumed data (§4.6).
+    // Pointers advance past the consumed data (ge-rules.md §4.6).
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
     else state_.vertexAddr = (state_.vertexAddr + count * state_.vertexStride()) & 0x0FFFFFFF;
 }
@@ -361,7 +362,7 @@ void GeEngine::doPatch(u32 word) {
         pkt.uknot = (word >> 16) & 3;
         pkt.vknot = (word >> 18) & 3;
     }
-    // PPSSPP reads 7 bits of each division count and treats 0 as 1 (§3.2).
+    // PPSSPP reads 7 bits of each division count and treats 0 as 1 (ge-rules.md §3.2).
     pkt.divU = std::max<u32>(1, state_.DIVIDE_u() & 0x7F);
     pkt.divV = std::max<u32>(1, state_.DIVIDE_v() & 0x7F);
     pkt.patchPrim = state_.PPM_prim();
@@ -391,7 +392,7 @@ void GeEngine::doPatch(u32 word) {
 
 namespace {
 
-// Position of one vertex in model space for BBOX (morphing applied; ge-reference §5.4/§5.5).
+// Position of one vertex in model space for BBOX (morphing applied; ge-rules.md §5.4/§5.5).
 bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) {
     const u32 vtype = st.op(GE_CMD_VTYPE);
     const VertexLayout l = VertexLayout::fromVtype(vtype);
@@ -422,7 +423,7 @@ bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) 
 
 }  // namespace
 
-// Object culling (manual §11.1; ge-reference §3.1 BBOX notes): BFLG = 1 unless every vertex lies
+// Object culling (manual §11.1; ge-rules.md §3.1 BBOX notes): BFLG = 1 unless every vertex lies
 // outside the same edge of the drawing area (REGION ∩ SCISSOR widened by one pixel, placed in screen
 // space with OFFSETX/Y) or behind the near plane. An area touching the 4096 screen edge always passes.
 bool GeEngine::chargeDraw(u64 vertexCycles) {
@@ -460,7 +461,7 @@ void GeEngine::doBBox(u32 arg) {
     const u32 stride = state_.vertexStride();
     const u32 isize = state_.indexSize();
     const u32 vbase = state_.vertexAddr, ibase = state_.indexAddr;
-    // Advance the pointers as a draw would (§4.6).
+    // Advance the pointers as a draw would (ge-rules.md §4.6).
     if (isize) state_.indexAddr = (state_.indexAddr + n * isize) & 0x0FFFFFFF;
     else state_.vertexAddr = (state_.vertexAddr + n * stride) & 0x0FFFFFFF;
     if (n == 0) {
@@ -535,7 +536,7 @@ void GeEngine::doTransfer(u32 arg) {
 
 void GeEngine::doClutLoad(u32 arg) {
     u32 blocks = arg & 0x3F;
-    if ((arg & 0x7F) == 0x40) blocks = 64;  // game workaround kept by PPSSPP (§3.8)
+    if ((arg & 0x7F) == 0x40) blocks = 64;  // as PPSSPP's recorder records it (ge-rules.md §3.8)
     const u32 bytes = std::min<u32>(blocks * 32, sizeof(state_.clut));
     const u32 addr = state_.clutAddr();
     renderer_->syncMemoryForRead(addr, bytes);
@@ -617,7 +618,7 @@ void GeEngine::doEnd(u32 arg) {
         case 0x02:  // HANDLER_CONTINUE
             if (listener_) listener_->onSignal(behaviour, sarg, arg, pc);
             break;
-        case 0x03:  // HANDLER_PAUSE: acted on at the next FINISH + END (§4.4)
+        case 0x03:  // HANDLER_PAUSE: acted on at the next FINISH + END (ge-rules.md §4.4)
             list_.pauseAtFinish = true;
             list_.pauseSignalArg = sarg;
             list_.pauseEndArg = arg;
@@ -687,7 +688,7 @@ void GeEngine::doEnd(u32 arg) {
         if (listener_) listener_->onFinish(finishArg, pc);
         return;
     }
-    // END without SIGNAL/FINISH: the GE stops (uOFW); PPSSPP would ignore it (§4.3 conflict).
+    // END without SIGNAL/FINISH: the GE stops (uOFW); PPSSPP would ignore it (ge-rules.md §4.3 conflict).
     stopRequested_ = true;
     stopStatus_ = RunStatus::Ended;
     if (listener_) listener_->onEnd(pc);

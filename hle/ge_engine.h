@@ -1,4 +1,5 @@
-// The GE machine: executes display lists (manual §20, §11.1; ge-reference.md §4) against a
+// SPDX-License-Identifier: MIT
+// The GE machine: executes display lists (manual §20, §11.1; docs/ge-rules.md §4) against a
 // GeState and guest Memory, and hands draws, transfers and syncs to a Renderer.
 //
 // One list executes at a time; queueing several lists, list IDs and sync are the sceGe layer's
@@ -26,7 +27,7 @@ const char* geErrorName(GeError e);
 enum class RunStatus {
     Idle,             // no list started
     Completed,        // FINISH + END: list done
-    Ended,            // END without SIGNAL/FINISH: the GE stops (uOFW behaviour; ge-reference §4.3)
+    Ended,            // END without SIGNAL/FINISH: the GE stops (uOFW behaviour; ge-rules.md §4.3)
     Stalled,          // PC reached the stall address; setStall() resumes
     Paused,           // a SIGNAL pause (HANDLER_PAUSE at FINISH, or requestPause()); resume() continues
     Budget,           // command budget exhausted; run() again continues
@@ -50,7 +51,7 @@ public:
     virtual void onProgress(u32 /*pc*/) {}
 };
 
-// Execution registers of the running list (ge-reference.md §4.1).
+// Execution registers of the running list (ge-rules.md §4.1).
 struct ListRegs {
     u32 pc = 0;
     u32 stall = 0;        // 0: no stall address
@@ -138,7 +139,7 @@ public:
     u32 takeDirty() { u32 d = dirty_; dirty_ = 0; return d; }
     void markDirty(u32 groups) { dirty_ |= groups; }
 
-    // Address formation of §4.2: (BASE-high | arg) + OFFSET, masked to 28 bits.
+    // Address formation of ge-rules.md §4.2: (BASE-high | arg) + OFFSET, masked to 28 bits.
     u32 formAddress(u32 arg24) const;
 
     // Everything of the engine a save state keeps (hle/savestate.h): what cannot be re-derived.

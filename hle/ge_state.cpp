@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/ge_state.h"
 
 #include <cstdio>

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // GE engine state: the 256-word command register file, the matrices, the palette RAM and the
-// internal address registers (ge-reference.md §1, §3.4, §4.1). Typed accessors for every field
+// internal address registers (docs/ge-rules.md §1, §3.4, §4.1). Typed accessors for every field
 // are generated from ge_fields.def; backends never shift and mask register words themselves.
 #pragma once
 #include <algorithm>
@@ -59,7 +60,7 @@ enum GePrimType : u8 {
     GE_PRIM_TRIANGLE_FAN, GE_PRIM_RECTANGLES, GE_PRIM_KEEP_PREVIOUS
 };
 // Comparison functions of the alpha, stencil and depth tests (CMD_ATEST, CMD_STEST, CMD_ZTEST;
-// ge-reference.md §3.10), stencil operations (CMD_SOP) and blend equations (CMD_BLEND bits 8–10).
+// ge-rules.md §3.10), stencil operations (CMD_SOP) and blend equations (CMD_BLEND bits 8–10).
 // Codes the software model's pixel pipeline and both backends' reference rules
 // (geometry/reference_rules.h) read.
 enum GeCompareFunc : u8 { CMP_NEVER = 0, CMP_ALWAYS, CMP_EQUAL, CMP_NOTEQUAL, CMP_LESS, CMP_LEQUAL, CMP_GREATER, CMP_GEQUAL };
@@ -69,12 +70,12 @@ enum GeBlendEq : u8 { BLEQ_ADD = 0, BLEQ_SUB, BLEQ_REVSUB, BLEQ_MIN, BLEQ_MAX, B
 struct GeState {
     // Command register file: the last word executed for each opcode, opcode included.
     std::array<u32, 256> regs{};
-    // Matrices, element order as in ge-reference.md §3.4 (3x4: element k = row k%3, column k/3).
+    // Matrices, element order as in ge-rules.md §3.4 (3x4: element k = row k%3, column k/3).
     float bone[96] = {};
     float world[12] = {}, view[12] = {}, proj[16] = {}, tgen[12] = {};
     // Upload indices (auto-incremented; keep counting past the end).
     u32 boneNum = 0, worldNum = 0, viewNum = 0, projNum = 0, tgenNum = 0;
-    // Internal address registers (§4.1).
+    // Internal address registers (ge-rules.md §4.1).
     u32 vertexAddr = 0, indexAddr = 0, offsetAddr = 0;
     // Palette RAM (1024 bytes) and how much of it the last CLOAD filled.
     alignas(16) u8 clut[1024] = {};
@@ -116,14 +117,14 @@ struct GeState {
     // ---- Derived values every backend needs (one definition each) ----
     bool isThrough() const { return VTYPE_through(); }
     bool isClearMode() const { return CMODE_on(); }
-    // Frame/depth buffers always live in VRAM (§7.2): PPSSPP's mask 0x1FFFF0.
+    // Frame/depth buffers always live in VRAM (ge-rules.md §7.2): PPSSPP's mask 0x1FFFF0.
     u32 framebufAddr() const { return 0x04000000 | (FBP_addr() & 0x1FFFF0); }
     u32 framebufStride() const { return FBW_width() & 0x7FC; }
     GeBufferFormat framebufFormat() const { return GeBufferFormat(FPF_format()); }
     u32 depthbufAddr() const { return 0x04000000 | (ZBP_addr() & 0x1FFFF0); }
     u32 depthbufStride() const { return ZBW_width() & 0x7FC; }
     u32 textureAddr(int level) const { return (TBP_addr(level) & 0xFFFFF0) | (TBW_high(level) << 24); }
-    // Buffer width of a level in texels, with the format's 16-byte row alignment applied (§6.2).
+    // Buffer width of a level in texels, with the format's 16-byte row alignment applied (ge-rules.md §6.2).
     u32 textureBufWidth(int level) const;
     u32 textureWidth(int level) const { return 1u << std::min<u32>(TSIZE_wlog(level), 9); }
     u32 textureHeight(int level) const { return 1u << std::min<u32>(TSIZE_hlog(level), 9); }
@@ -133,7 +134,7 @@ struct GeState {
     u32 transferDstAddr() const { return (XBP2_addr() & 0xFFFFF0) | (XBW2_high() << 24); }
     u32 transferSrcStride() const { return XBW1_width() & 0x7F8; }
     u32 transferDstStride() const { return XBW2_width() & 0x7F8; }
-    // Dither matrix value at (x, y), signed −8…7 (§3.10).
+    // Dither matrix value at (x, y), signed −8…7 (ge-rules.md §3.10).
     int ditherValue(int x, int y) const {
         int v = (DTTH_row(y & 3) >> (4 * (x & 3))) & 0xF;
         return v >= 8 ? v - 16 : v;
@@ -146,7 +147,7 @@ struct GeState {
         return sizes[VTYPE_idx()];
     }
 
-    // ---- 512-word context (sceGeSaveContext layout == .ppdmp INIT record, ppdmp-format.md §5) ----
+    // ---- 512-word context (sceGeSaveContext layout == .ppdmp INIT record, docs/ppdmp.md §5) ----
     void saveContext(u32 out[512]) const;
     // Restores registers, matrices, indices and address registers. Returns false if the context
     // does not have the expected shape (it is still applied as far as it goes).
@@ -155,10 +156,10 @@ struct GeState {
     void reset();
 };
 
-// Opcodes stored in words 17–225 of a context, in order (ppdmp-format.md §5).
+// Opcodes stored in words 17–225 of a context, in order (ppdmp.md §5).
 const std::array<u8, 209>& geContextOpcodes();
 
-// Vertex layout of a VTYPE word (ge-reference.md §5.2): offsets of each component.
+// Vertex layout of a VTYPE word (ge-rules.md §5.2): offsets of each component.
 struct VertexLayout {
     u8 weightOff = 0, tcOff = 0, colOff = 0, nrmOff = 0, posOff = 0;
     u8 size = 0;       // one vertex

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GE-time estimate: how long the GE would take for the work of a list, in cycles of the
 // PSP's 222 MHz CPU clock. Used to bound replays in emulated time (ge2gl --max-ge-ms) so that a
 // small hostile dump cannot buy minutes of work, and reported by `render --stats`.

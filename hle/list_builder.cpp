@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/list_builder.h"
 
 #include <algorithm>
@@ -27,14 +28,14 @@ void putF(u8* p, float f) {
 }
 
 // VRAM addresses compared without the mirror bits (all four mirrors are the same bytes for
-// drawing, ge-reference.md §7.3); other addresses just drop bits 31..28.
+// drawing, docs/ge-rules.md §7.3); other addresses just drop bits 31..28.
 u32 canonical(u32 addr) {
     u32 a = Memory::normalize(addr);
     if (Memory::isVram(a)) return Memory::kVramBase | (a & (Memory::kVramSize - 1));
     return a;
 }
 
-// Bits per texel of a texture format (ge-reference.md §6.1).
+// Bits per texel of a texture format (ge-rules.md §6.1).
 u32 texelBits(u32 fmt) {
     static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 0, 0, 0, 0, 0};
     return bits[fmt & 15];
@@ -52,7 +53,7 @@ u32 log2Floor(u32 v) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Vertex packing (ge-reference.md §5.2 layout, §5.4 value scaling)
+// Vertex packing (ge-rules.md §5.2 layout, §5.4 value scaling)
 
 void packVertex(u32 vtype, const BuildVertex& v, u8* out) {
     const VertexLayout l = VertexLayout::fromVtype(vtype);
@@ -146,7 +147,7 @@ void DumpRecorder::end(u32 displayAddr, u32 stride, u32 format) {
 }
 
 u32 DumpRecorder::formAddress(u32 arg) const {
-    // ge-reference.md §4.2: (BASE-high | arg) + OFFSET, 28 bits (PPSSPP keeps BASE bits 19..16).
+    // ge-rules.md §4.2: (BASE-high | arg) + OFFSET, 28 bits (PPSSPP keeps BASE bits 19..16).
     u32 hi = (st_.regs[GE_CMD_BASE] & 0x000F0000) << 8;
     return ((hi | (arg & 0xFFFFFF)) + st_.offsetAddr) & 0x0FFFFFFF;
 }
@@ -162,7 +163,7 @@ void DumpRecorder::command(u32 word) {
     const u32 arg = word & 0xFFFFFF;
     switch (op) {
     // Words the recorder replaces by data records or that only steer the list: never stored in
-    // REGISTERS (ppdmp-format.md §3.2, §7 rule 4). Their effect on the pointers is tracked.
+    // REGISTERS (docs/ppdmp.md §3.2, §7 rule 4). Their effect on the pointers is tracked.
     case GE_CMD_NOP: return;
     case GE_CMD_VADR:
         st_.regs[op] = word;
@@ -181,7 +182,7 @@ void DumpRecorder::command(u32 word) {
     case GE_CMD_END: case GE_CMD_SIGNAL: case GE_CMD_FINISH:
         return;
     case GE_CMD_BBOX: {
-        // BBOX advances the pointers like a draw (§4.6); its result is not replayed.
+        // BBOX advances the pointers like a draw (ge-rules.md §4.6); its result is not replayed.
         u32 count = arg & 0xFFFF;
         if (st_.VTYPE_idx()) st_.indexAddr += count * st_.indexSize();
         else st_.vertexAddr += count * st_.vertexStride();
@@ -201,7 +202,7 @@ void DumpRecorder::recordDraw(u32 word) {
     const u8 op = u8(word >> 24);
     u32 count;
     if (op == GE_CMD_PRIM) count = word & 0xFFFF;
-    else count = (word & 0xFF) * ((word >> 8) & 0xFF);  // control points of a patch (§4.6)
+    else count = (word & 0xFF) * ((word >> 8) & 0xFF);  // control points of a patch (ge-rules.md §4.6)
 
     flushBlock();
     if (count > 0) {
@@ -225,7 +226,7 @@ void DumpRecorder::recordDraw(u32 word) {
             vertexCount = maxIndex + 1;
             st_.indexAddr += count * isz;
         }
-        // §3.2: vertex bytes for the draw: count × stride (indexed: (maxIndex+1) × stride).
+        // ppdmp.md §3.2: vertex bytes for the draw: count × stride (indexed: (maxIndex+1) × stride).
         const u32 bytes = vertexCount * stride;
         const u32 avail = mem_.validSize(st_.vertexAddr, bytes);
         if (avail < bytes) warnings_.push_back("draw reads vertices outside memory");
@@ -240,7 +241,7 @@ void DumpRecorder::recordDraw(u32 word) {
 }
 
 void DumpRecorder::recordTextures() {
-    // Levels 0..MXL with a non-zero address (ppdmp-format.md §3.2: the recorder records every
+    // Levels 0..MXL with a non-zero address (ppdmp.md §3.2: the recorder records every
     // level it may sample; levels above MXL are never read).
     const u32 maxLevel = std::min<u32>(st_.TMODE_maxlevel(), 7);
     const u32 bits = texelBits(st_.TPF_format());
@@ -253,7 +254,7 @@ void DumpRecorder::recordTextures() {
         if (addr == 0) continue;
         const u32 bufw = st_.textureBufWidth(int(level));
         const u32 w = st_.textureWidth(int(level)), h = st_.textureHeight(int(level));
-        // §3.2: bpp·(bufw·h + max(0, w − bufw))/8, cut at the end of valid memory.
+        // ppdmp.md §3.2: bpp·(bufw·h + max(0, w − bufw))/8, cut at the end of valid memory.
         const u64 texels = u64(bufw) * h + (w > bufw ? w - bufw : 0);
         const u32 want = u32(std::min<u64>(texels * bits / 8, 0x7FFFFFFF));
         const u32 size = mem_.validSize(addr, want);
@@ -262,7 +263,7 @@ void DumpRecorder::recordTextures() {
             const u32 rawBufw = st_.TBW_width(int(level));
             if (overlapsDrawn(addr, want)) {
                 // Pixels drawn by the GE in this recording: header only, "drawn" | "unchanged"
-                // (| "target"), so players keep what they rendered (ppdmp-format.md §3.3).
+                // (| "target"), so players keep what they rendered (ppdmp.md §3.3).
                 u32 flags = 4 | 2 | (isTarget(addr) ? 1 : 0);
                 out_.framebufTexture(int(level), addr, rawBufw, flags, nullptr, 0);
             } else {
@@ -278,7 +279,7 @@ void DumpRecorder::recordTextures() {
 void DumpRecorder::recordClut(u32 word) {
     flushBlock();
     const u32 arg = word & 0xFFFFFF;
-    // §3.8: NP blocks of 32 bytes; (arg & 0x7F) == 0x40 counts as 64; palette RAM is 1024 bytes.
+    // ge-rules.md §3.8: NP blocks of 32 bytes; (arg & 0x7F) == 0x40 counts as 64; palette RAM is 1024 bytes.
     u32 blocks = (arg & 0x7F) == 0x40 ? 64 : (arg & 0x3F);
     const u32 want = std::min<u32>(blocks * 32, 1024);
     const u32 addr = st_.clutAddr();
@@ -287,7 +288,7 @@ void DumpRecorder::recordClut(u32 word) {
         if (Memory::isVram(addr) && overlapsDrawn(addr, want)) {
             // A palette drawn by the GE in this recording: its bytes are only known to a renderer.
             // No CLUT record: the CBP/CBW words stay as recorded (VRAM CLUT addresses are kept,
-            // ppdmp-format.md §6.4), so the player's CLOAD reads the pixels it rendered.
+            // ppdmp.md §6.4), so the player's CLOAD reads the pixels it rendered.
         } else {
             if (Memory::isVram(addr)) out_.clutAddr(addr, 0);
             out_.clut(size ? mem_.ptr(addr, size) : nullptr, size);
@@ -301,7 +302,7 @@ void DumpRecorder::recordClut(u32 word) {
 bool DumpRecorder::recordTransfer(u32 word) {
     const u32 dst = st_.transferDstAddr();
     if (!Memory::isVram(dst)) {
-        // PPSSPP records only transfers into VRAM; the XSTART word itself is dropped (§3.2).
+        // PPSSPP records only transfers into VRAM; the XSTART word itself is dropped (ppdmp.md §3.2).
         warnings_.push_back("transfer to RAM dropped from the dump");
         return false;
     }
@@ -309,13 +310,13 @@ bool DumpRecorder::recordTransfer(u32 word) {
     const u32 w = st_.XSIZE_w1() + 1, h = st_.XSIZE_h1() + 1;
     const u32 sx = st_.XPOS1_x(), sy = st_.XPOS1_y();
     const u32 src = st_.transferSrcAddr(), srcStride = st_.transferSrcStride();
-    // §3.2: bytes from the source base up to the last pixel used.
+    // ppdmp.md §3.2: bytes from the source base up to the last pixel used.
     const u32 want = ((sy + h - 1) * srcStride + sx + w) * bpp;
     flushBlock();
     if (Memory::isVram(src) && overlapsDrawn(src, want)) {
         // The source pixels were drawn by the GE in this recording and only a renderer knows
         // them. Without a TRANSFERSRC record the XBP1/XBW1 words stay as recorded (they point
-        // into VRAM), so players copy what they rendered (ppdmp-format.md §6.4).
+        // into VRAM), so players copy what they rendered (ppdmp.md §6.4).
     } else {
         const u32 size = mem_.validSize(src, want);
         if (size < want) warnings_.push_back("transfer source reaches past the end of memory");
@@ -332,7 +333,7 @@ bool DumpRecorder::recordTransfer(u32 word) {
 }
 
 void DumpRecorder::markDrawnBuffers(bool depthWritten) {
-    // Conservative extent: every row up to the scissor's bottom edge (§8.6: the scissor always limits drawing).
+    // Conservative extent: every row up to the scissor's bottom edge (ge-rules.md §8.6: the scissor always limits drawing).
     const u32 rows = st_.SCISSOR2_y() + 1;
     const u32 bpp = st_.FPF_format() == GE_FORMAT_8888 ? 4 : 2;
     const u32 fb = canonical(st_.framebufAddr());
@@ -381,7 +382,7 @@ void DumpRecorder::forgetDrawn(u32 dest, u32 size) {
 void DumpRecorder::cpuMemcpy(u32 dest, const void* data, u32 size) {
     if (!Memory::isVram(dest) || size == 0) return;
     // The copy happens between GE commands: close the open block so players run the list up
-    // to here first (ppdmp-format.md §6.2 MEMCPYDATA).
+    // to here first (ppdmp.md §6.2 MEMCPYDATA).
     flushBlock();
     out_.memcpy(dest, data, size);
     forgetDrawn(dest, size);
@@ -472,7 +473,7 @@ u32 ListBuilder::callList(const ListBuilder& sub) {
 }
 
 void ListBuilder::addressCmd(u8 op, u32 addr) {
-    // sceGuDrawArray: BASE carries address bits 27..24 (ge-reference.md §3.1), then the low 24.
+    // sceGuDrawArray: BASE carries address bits 27..24 (ge-rules.md §3.1), then the low 24.
     cmd(GE_CMD_BASE, (addr >> 8) & 0x0F0000);
     cmd(op, addr & 0xFFFFFF);
 }
@@ -501,7 +502,7 @@ void ListBuilder::offset(u32 x, u32 y) {
 }
 
 void ListBuilder::depthRange(u32 nearZ, u32 farZ) {
-    // sceGuDepthRange (ge-reference.md §3.5): integer midpoint, SZ = mid − near, TZ = mid.
+    // sceGuDepthRange (ge-rules.md §3.5): integer midpoint, SZ = mid − near, TZ = mid.
     const u32 mid = (nearZ + farZ) >> 1;
     cmdf(GE_CMD_SZ, float(mid) - float(nearZ));
     cmdf(GE_CMD_TZ, float(mid));
@@ -749,7 +750,7 @@ void ListBuilder::drawSpline(u32 vtype, u32 ucount, u32 vcount, u32 uedge, u32 v
 
 void ListBuilder::copyImage(u32 psm, u32 sx, u32 sy, u32 width, u32 height, u32 srcStride, u32 src, u32 dx, u32 dy,
                             u32 dstStride, u32 dst) {
-    // sceGuCopyImage (ge-reference.md §3.11): XBW carries address bits 31..24 in bits 23..16.
+    // sceGuCopyImage (ge-rules.md §3.11): XBW carries address bits 31..24 in bits 23..16.
     cmd(GE_CMD_XBP1, src & 0xFFFFFF);
     cmd(GE_CMD_XBW1, ((src & 0xFF000000) >> 8) | (srcStride & 0x7FF));
     cmd(GE_CMD_XPOS1, (sy & 0x3FF) << 10 | (sx & 0x3FF));

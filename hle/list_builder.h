@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: MIT
 // Display-list authoring: a small sceGu-like builder that emits GE command words, places the data
 // they point at (vertices, indices, textures, CLUTs) into guest memory, and can record the same
 // command stream as a `.ppdmp` frame dump.
 //
-// Word encodings follow ge-reference.md §3 and the SDK conventions noted there (§3.5 viewport,
-// offset and depth range; §3.10 sceGuClear; §3.11 sceGuCopyImage; §5.1 vertex types). Every word
+// Word encodings follow docs/ge-rules.md §3 and the SDK conventions noted there (ge-rules.md §3.5 viewport,
+// offset and depth range; ge-rules.md §3.10 sceGuClear; §3.11 sceGuCopyImage; §5.1 vertex types). Every word
 // the builder emits is listed in the comment of the call that emits it, in order, so tests can
 // check them word for word.
 //
@@ -18,7 +19,7 @@
 //   engine.startList(list, 0); engine.run();
 //
 // Recording: attach a DumpRecorder before emitting; it sees every word in execution order and
-// turns it into REGISTERS blocks plus the data records a draw consumes (ppdmp-format.md §4, §7).
+// turns it into REGISTERS blocks plus the data records a draw consumes (docs/ppdmp.md §4, §7).
 #pragma once
 #include <string>
 #include <vector>
@@ -33,17 +34,17 @@ namespace dump {
 class DumpWriter;
 }
 
-// Matrix kinds for setMatrix (ge-reference.md §3.4).
+// Matrix kinds for setMatrix (ge-rules.md §3.4).
 enum class GeMatrix { World, View, Proj, TexGen };
 
 // Flags of ListBuilder::clear (the SDK's GU_COLOR/STENCIL/DEPTH_BUFFER_BIT, which sceGuClear
-// shifts into CMODE bits 8..10: CEN, AEN, ZEN — ge-reference.md §3.10).
+// shifts into CMODE bits 8..10: CEN, AEN, ZEN — ge-rules.md §3.10).
 enum ClearFlags : u32 { CLEAR_COLOR = 1, CLEAR_STENCIL = 2, CLEAR_DEPTH = 4 };
 
 // Light components for lightColor (sceGuLightColor's GU_AMBIENT/GU_DIFFUSE/GU_SPECULAR).
 enum LightComponent : u32 { LIGHT_AMBIENT = 1, LIGHT_DIFFUSE = 2, LIGHT_SPECULAR = 4 };
 
-// VTYPE building blocks (ge-reference.md §5.1; same values as the SDK's GU_* macros).
+// VTYPE building blocks (ge-rules.md §5.1; same values as the SDK's GU_* macros).
 namespace vt {
 constexpr u32 TC_8 = 1, TC_16 = 2, TC_F = 3;
 constexpr u32 COL_5650 = 4 << 2, COL_5551 = 5 << 2, COL_4444 = 6 << 2, COL_8888 = 7 << 2;
@@ -66,7 +67,7 @@ struct BuildVertex {
     float x = 0, y = 0, z = 0;    // position (through mode: pixels, z 0–65535)
 };
 
-// Writes one vertex (one morph copy) in the layout of `vtype` (ge-reference.md §5.2, §5.4):
+// Writes one vertex (one morph copy) in the layout of `vtype` (ge-rules.md §5.2, §5.4):
 // fixed-point components are scaled (8-bit ×128, 16-bit ×32768; through-mode 16-bit positions
 // and texture coordinates as given) and saturated to their range; colours are truncated to 16-bit
 // formats. `out` must hold VertexLayout::fromVtype(vtype).size bytes; padding bytes are zeroed.
@@ -75,7 +76,7 @@ void packVertex(u32 vtype, const BuildVertex& v, u8* out);
 std::vector<u8> packVertices(u32 vtype, const BuildVertex* v, u32 count);
 
 // Turns an executed command stream into .ppdmp records the way PPSSPP's recorder orders them
-// (ppdmp-format.md §4, §7): REGISTERS blocks of state and kick words; before each kick the data it
+// (ppdmp.md §4, §7): REGISTERS blocks of state and kick words; before each kick the data it
 // consumes (texture levels, then INDICES, then VERTICES; CLUT before CLOAD; TRANSFERSRC before
 // XSTART). Data is read from `mem` at the time of the kick, so the builder must have placed it.
 //
@@ -84,10 +85,10 @@ std::vector<u8> packVertices(u32 vtype, const BuildVertex* v, u32 count);
 // know its pixels (it does not render), so it writes the 16-byte header only, with flags
 // "drawn" | "unchanged" (| "target" when the address is a buffer start): players then keep what
 // they rendered (PPSSPP skips the copy for flag bit 1 in v6; a zero-length copy is a no-op
-// anyway). Other VRAM textures carry their bytes with flags 0 (§7 rule 5). Likewise a transfer
+// anyway). Other VRAM textures carry their bytes with flags 0 (ppdmp.md §7 rule 5). Likewise a transfer
 // whose source, or a CLOAD whose palette, lies in GE-drawn VRAM gets no TRANSFERSRC / CLUT record:
 // the recorded XBP1/XBW1 or CBP/CBW words keep pointing at VRAM, which players leave as recorded
-// (ppdmp-format.md §6.4), so they read the pixels they rendered.
+// (ppdmp.md §6.4), so they read the pixels they rendered.
 class DumpRecorder {
 public:
     DumpRecorder(const Memory& mem, dump::DumpWriter& out);
@@ -169,7 +170,7 @@ public:
     void cmdf(u8 op, float f) { cmd(op, toFloat24(f)); }
     void nop() { cmd(GE_CMD_NOP, 0); }
 
-    // ---- flow control (§3.1, §4.4, §4.5) ----
+    // ---- flow control (ge-rules.md §3.1, §4.4, §4.5) ----
     void finish(u32 arg = 0);  // FINISH arg, END 0 (sceGuFinish)
     void end(u32 arg = 0);     // END arg
     // SIGNAL (behaviour<<16 | arg&0xFFFF), END endArg. For behaviour 0x03 (pause) the SDK follows
@@ -185,7 +186,7 @@ public:
     void offsetAddr(u32 addr) { cmd(GE_CMD_OFFSET, addr >> 8); }
     void origin() { cmd(GE_CMD_ORIGIN, 0); }
 
-    // ---- frame buffers and view (§3.5, §3.7, §3.10) ----
+    // ---- frame buffers and view (ge-rules.md §3.5, §3.7, §3.10) ----
     // FPF fmt, FBP vramOffset, FBW width (sceGuDrawBuffer). vramOffset is relative to 0x04000000.
     void drawBuffer(u32 fmt, u32 vramOffset, u32 width);
     // ZBP, ZBW.
@@ -203,14 +204,14 @@ public:
     void region(u32 x, u32 y, u32 w, u32 h);
     // Through-mode 8888 rectangles covering the scissor area, 64 pixels per column, like sceGuClear:
     // CMODE (flags<<8 | 1), VTYPE, BASE, VADR, PRIM RECTANGLES, CMODE 0. The vertex colour is
-    // (color & 0xFFFFFF) | stencil<<24 (alpha is the stencil, ge-reference.md §8.4); z = depth.
+    // (color & 0xFFFFFF) | stencil<<24 (alpha is the stencil, ge-rules.md §8.4); z = depth.
     void clear(u32 flags, u32 color, u16 depth, u8 stencil = 0);
 
     // ---- state ----
     void enable(u8 enableCmd, bool on) { cmd(enableCmd, on ? 1 : 0); }
     void setVertexType(u32 vtype) { cmd(GE_CMD_VTYPE, vtype); }
     // Column-major 4×4 (m[4·col + row], as ScePspFMatrix4): 3×4 kinds send rows 0–2 of the four
-    // columns (12 words), Proj all 16 (ge-reference.md §3.4 SDK note). N 0 first.
+    // columns (12 words), Proj all 16 (ge-rules.md §3.4 SDK note). N 0 first.
     void setMatrix(GeMatrix kind, const float m[16]);
     // 3×4 in GE element order (element k = row k%3, column k/3).
     void setMatrix3x4(GeMatrix kind, const float m[12]);
@@ -218,10 +219,10 @@ public:
     void setBoneMatrix(u32 i, const float m[12]);
     void setMorphWeight(u32 i, float w) { cmdf(u8(GE_CMD_WEIGHT0 + (i & 7)), w); }
     void shadeModel(bool gouraud) { cmd(GE_CMD_SHADE, gouraud); }
-    // CULL bit: false culls clockwise triangles (drawing coordinates), true counter-clockwise (§3.6).
+    // CULL bit: false culls clockwise triangles (drawing coordinates), true counter-clockwise (ge-rules.md §3.6).
     void cullMode(bool ccw) { cmd(GE_CMD_CULL, ccw); }
 
-    // Textures (§3.7, §3.8).
+    // Textures (ge-rules.md §3.7, §3.8).
     // TBPn addr&0xFFFFFF, TBWn (addr>>8 & 0x0F0000)|bufw, TSIZEn (log2 h<<8 | log2 w), TFLUSH.
     void setTexture(u32 level, u32 addr, u32 w, u32 h, u32 bufw);
     // TMODE (maxLevel<<16 | multiclut<<8 | swizzle), TPF format, TFLUSH.
@@ -233,7 +234,7 @@ public:
     void texFilter(u32 min, u32 mag) { cmd(GE_CMD_TFILTER, (mag << 8) | min); }
     // TWRAP (vclamp<<8 | uclamp).
     void texWrap(bool uclamp, bool vclamp) { cmd(GE_CMD_TWRAP, (u32(vclamp) << 8) | u32(uclamp)); }
-    // TLEVEL (offl<<16 | mode), offl = trunc(bias·16) clamped to −128…127 (§3.8).
+    // TLEVEL (offl<<16 | mode), offl = trunc(bias·16) clamped to −128…127 (ge-rules.md §3.8).
     void texLevelMode(u32 mode, float bias);
     void texSlope(float s) { cmdf(GE_CMD_TSLOPE, s); }
     // SU, SV, TU, TV.
@@ -241,7 +242,7 @@ public:
     void texOffset(float tu, float tv);
     // TMAP (proj<<8 | mode).
     void texMapMode(u32 mode, u32 projSource = 0) { cmd(GE_CMD_TMAP, (projSource << 8) | mode); }
-    // TSHADE (v<<8 | u): lights used for shade mapping (field order per ge-reference §3.8).
+    // TSHADE (v<<8 | u): lights used for shade mapping (field order per ge-rules.md §3.8).
     void texShadeLights(u32 lu, u32 lv) { cmd(GE_CMD_TSHADE, (lv << 8) | lu); }
     void texFlush() { cmd(GE_CMD_TFLUSH, 0); }
     void texSync() { cmd(GE_CMD_TSYNC, 0); }
@@ -250,7 +251,7 @@ public:
     // CBP addr&0xFFFFFF, CBW (addr>>8)&0x0F0000, CLOAD blocks.
     void clutLoad(u32 addr, u32 blocks);
 
-    // Pixel operations (§3.10).
+    // Pixel operations (ge-rules.md §3.10).
     // BLEND (eq<<8 | b<<4 | a), FIXA, FIXB.
     void blendFunc(u32 eq, u32 a, u32 b, u32 fixA = 0, u32 fixB = 0);
     void alphaFunc(u32 func, u32 ref, u32 mask = 0xFF) { cmd(GE_CMD_ATEST, func | (ref & 0xFF) << 8 | (mask & 0xFF) << 16); }
@@ -266,9 +267,9 @@ public:
     // DTTH1–4 from a 4×4 matrix m[row·4 + col] of values −8…7.
     void setDither(const int m[16]);
 
-    // Lighting (§3.6).
+    // Lighting (ge-rules.md §3.6).
     // LXn, LYn, LZn, LTYPEn (type<<8 | comps) — comps is the raw LTYPE field: 0 ambient+diffuse,
-    // 1 +specular, 2 powered diffuse (§3.6); the SDK's order of words.
+    // 1 +specular, 2 powered diffuse (ge-rules.md §3.6); the SDK's order of words.
     void light(u32 n, u32 type, u32 comps, const float pos[3]);
     // LACn / LDCn / LSCn for each bit of `components`.
     void lightColor(u32 n, u32 components, u32 rgb);
@@ -290,7 +291,7 @@ public:
     // FC rgb, FOG1 far, FOG2 1/(far−near) (0 when far == near), in sceGuFog's order.
     void fog(float nearZ, float farZ, u32 rgb);
 
-    // Patches (§3.2).
+    // Patches (ge-rules.md §3.2).
     void patchDivide(u32 u, u32 v) { cmd(GE_CMD_DIVIDE, (v << 8) | u); }
     void patchPrim(u32 ppm) { cmd(GE_CMD_PPM, ppm); }
     void patchFace(bool reverse) { cmd(GE_CMD_PFACE, reverse); }
@@ -305,7 +306,7 @@ public:
     void drawBezier(u32 vtype, u32 ucount, u32 vcount, u32 indexAddr, u32 vertexAddr);
     // VTYPE, [BASE, IADR], [BASE, VADR], SPLINE (vedge<<18 | uedge<<16 | v<<8 | u).
     void drawSpline(u32 vtype, u32 ucount, u32 vcount, u32 uedge, u32 vedge, u32 indexAddr, u32 vertexAddr);
-    // Block transfer as sceGuCopyImage (§3.11): XBP1, XBW1, XPOS1, XBP2, XBW2, XPOS2, XSIZE,
+    // Block transfer as sceGuCopyImage (ge-rules.md §3.11): XBP1, XBW1, XPOS1, XBP2, XBW2, XPOS2, XSIZE,
     // XSTART (1 for 8888, else 0). Strides in pixels; addresses are full guest addresses.
     void copyImage(u32 psm, u32 sx, u32 sy, u32 width, u32 height, u32 srcStride, u32 src, u32 dx, u32 dy,
                    u32 dstStride, u32 dst);

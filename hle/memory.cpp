@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/memory.h"
 
 #include <sys/mman.h>
@@ -168,7 +169,7 @@ bool Memory::setEdramTranslation(u32 value) {
     return true;
 }
 
-// Mirror permutations measured on hardware (ge-reference.md §7.3, pat gpu/ge/edramswizzle).
+// Mirror permutations measured on hardware (docs/ge-rules.md §7.3, pat gpu/ge/edramswizzle).
 namespace {
 
 u32 linearToMirrorFor(u32 T, u32 i, int mirror) {

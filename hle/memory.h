@@ -1,4 +1,5 @@
-// The PSP address space as the GE sees it (ge-reference.md §7, manual §22).
+// SPDX-License-Identifier: MIT
+// The PSP address space as the GE sees it (docs/ge-rules.md §7, manual §22).
 //
 // Every access is bounds-checked. Host pointers are handed out only for ranges that lie wholly
 // inside one region; a wild address yields nullptr / zero and is counted in badAccesses(), never
@@ -7,7 +8,7 @@
 //
 // VRAM: 2 MiB at 0x04000000 with three mirrors up to 0x047FFFFF. For drawing, all four mirrors
 // address the same linear bytes (as PPSSPP does); readMirrored()/writeMirrored() give the exact
-// byte permutation measured on hardware for mirrors 1 and 3 (ge-reference.md §7.3), for CPU-side
+// byte permutation measured on hardware for mirrors 1 and 3 (ge-rules.md §7.3), for CPU-side
 // reads and writes through the swizzled views.
 //
 // Owned RAM and VRAM are anonymous private mappings (MAP_NORESERVE): the kernel hands out zeroed

@@ -1,4 +1,5 @@
-// PSP 16-bit pixel conversions (ge-reference.md §5.4, §6.1, §8.8).
+// SPDX-License-Identifier: MIT
+// PSP 16-bit pixel conversions (docs/ge-rules.md §5.4, §6.1, §8.8).
 #include "hle/pixel_format.h"
 
 namespace ge {
@@ -12,7 +13,7 @@ u32 decodePixel16(u16 v, GeBufferFormat fmt) {
     }
 }
 
-// Writes truncate: only the high bits of each 8-bit channel survive (§8.8).
+// Writes truncate: only the high bits of each 8-bit channel survive (ge-rules.md §8.8).
 u16 encode5650(u32 c) {
     u32 r = (c >> 3) & 0x1F, g = (c >> 10) & 0x3F, b = (c >> 19) & 0x1F;
     return u16(r | (g << 5) | (b << 11));

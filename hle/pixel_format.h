@@ -1,4 +1,5 @@
-// PSP 16/32-bit pixel layouts (ge-reference.md §5.4, §6.1, §8.8).
+// SPDX-License-Identifier: MIT
+// PSP 16/32-bit pixel layouts (docs/ge-rules.md §5.4, §6.1, §8.8).
 //
 // RGBA8888 is handled as a u32 with R in bits 7..0, G 15..8, B 23..16, A 31..24 — the same
 // layout as an 8888 texel or frame-buffer pixel in guest memory, read little-endian.
@@ -9,7 +10,7 @@
 namespace ge {
 
 // 16-bit → RGBA8888 by bit replication (a 5-bit channel c becomes c<<3 | c>>2, 6-bit c<<2 | c>>4,
-// 4-bit c·17; §5.4). 5650: R bits 4..0, G 10..5, B 15..11, alpha 255. 5551: R 4..0, G 9..5,
+// 4-bit c·17; ge-rules.md §5.4). 5650: R bits 4..0, G 10..5, B 15..11, alpha 255. 5551: R 4..0, G 9..5,
 // B 14..10, A bit 15 (0 or 255). 4444: R 3..0, G 7..4, B 11..8, A 15..12.
 // Inline so that the per-format texture/frame-buffer loops can inline them.
 inline u32 decode5650(u16 v) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The one abstract interface between the GE machine (hle/) and a backend (softmodel/, translator/).
 //
 // The engine hands a backend plain packets. A packet refers to the engine's live GeState: it is

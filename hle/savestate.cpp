@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/savestate.h"
 
 #include <xxhash.h>
@@ -178,7 +179,7 @@ void getList(Reader& r, ListRegs& l) {
     l.stall = r.u32v();
     for (auto& e : l.callStack) e[0] = r.u32v(), e[1] = r.u32v();
     l.callDepth = r.u32v();
-    r.failIf(l.callDepth > 2);  // the GE's two CALL levels (ge-reference §4.1)
+    r.failIf(l.callDepth > 2);  // the GE's two CALL levels (docs/ge-rules.md §4.1)
     l.bflg = r.b();
     const u32 n = r.u32v();
     r.failIf(n > kMaxSignalStack);

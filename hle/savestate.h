@@ -1,4 +1,5 @@
-// Whole-GE save states (issue 14; the byte format is docs/savestate.md).
+// SPDX-License-Identifier: MIT
+// Whole-GE save states (the byte format is docs/savestate.md).
 //
 // A state holds what cannot be re-derived: the engine (registers, matrices and their upload
 // indices, palette RAM, the running list's execution registers, an immediate-mode primitive being

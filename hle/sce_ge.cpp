@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/sce_ge.h"
 
 #include <cstdio>
@@ -138,7 +139,7 @@ void SceGe::load(int i) {
     const u64 c0 = engine_.stats().cycles;  // starting the list is its GE time (kListStart)
     if (!dl.started) {
         // The list's context buffer receives the state at the moment the list starts and is
-        // restored at its FINISH (§4.7). (The firmware copies the previous list's saved context
+        // restored at its FINISH (docs/ge-rules.md §4.7). (The firmware copies the previous list's saved context
         // when it has one; that equals the current state, which was restored from it.)
         if (dl.contextAddr) {
             u32 ctx[512];
@@ -531,7 +532,7 @@ s32 SceGe::getCmd(u32 op, u32* out) const {
     u32 v;
     switch (op) {
     // Matrix data ports read back as the bare opcode; number registers as the current upload
-    // index (ge-reference §1).
+    // index (ge-rules.md §1).
     case GE_CMD_BONED:
     case GE_CMD_WORLDD:
     case GE_CMD_VIEWD:
@@ -670,7 +671,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
             if (!queue_.empty() && queue_.front() == i && active_ == i) completeFront(s == RunStatus::Error);
             if (i == stopAfter) break;
         } else if (s == RunStatus::Ended && active_ == i) {
-            // END without SIGNAL/FINISH: the GE stops and the list never finishes (uOFW; §4.3).
+            // END without SIGNAL/FINISH: the GE stops and the list never finishes (uOFW; ge-rules.md §4.3).
             dl.hung = true;
             const u32 pc = engine_.list().pc;
             message_ = fmt("END without SIGNAL or FINISH before 0x%08x: the GE stops and list ", pc) +

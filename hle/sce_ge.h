@@ -1,4 +1,5 @@
-// The sceGe kernel module's list semantics on top of GeEngine (ge-reference.md §4.4, §4.5, §4.7;
+// SPDX-License-Identifier: MIT
+// The sceGe kernel module's list semantics on top of GeEngine (docs/ge-rules.md §4.4, §4.5, §4.7;
 // behaviour follows the uOFW reimplementation of ge.prx, with PPSSPP's choices where the firmware
 // behaviour is unknown or would hang a game).
 //
@@ -23,7 +24,7 @@
 
 namespace ge {
 
-// PSP kernel error codes as the sceGe functions return them (uOFW ge.c; ge-reference §4.7).
+// PSP kernel error codes as the sceGe functions return them (uOFW ge.c; ge-rules.md §4.7).
 namespace sce {
 constexpr s32 kOk = 0;
 constexpr s32 kErrorInvalidState = s32(0x80000004);    // uOFW: Break/Continue on a list in no breakable state
@@ -94,7 +95,7 @@ enum class SceRunState : u8 {
     Budget,    // command budget used up; more work is ready
     Stalled,   // the current list reached its stall address
     Paused,    // the current list is paused (break, signal pause, or head-enqueued awaiting continue)
-    Hung,      // the current list hit an END without SIGNAL/FINISH: the GE stops (uOFW, §4.3)
+    Hung,      // the current list hit an END without SIGNAL/FINISH: the GE stops (uOFW, ge-rules.md §4.3)
     Reentrant, // run() was called from inside a callback
     Break,     // a command observer stopped the GE before a command (GeEngine::broke)
 };
@@ -120,7 +121,7 @@ public:
     SceGe& operator=(const SceGe&) = delete;
 
     void setListener(SceGeListener* l) { listener_ = l; }
-    // sceKernelGetCompiledSdkVersion() of the game: selects old-SDK behaviours (§4.4, §4.7).
+    // sceKernelGetCompiledSdkVersion() of the game: selects old-SDK behaviours (ge-rules.md §4.4, §4.7).
     void setSdkVersion(u32 v) { sdkVersion_ = v; }
     u32 sdkVersion() const { return sdkVersion_; }
     // Commands a wait-mode sync may execute before it gives up with kWouldBlock.
@@ -144,7 +145,7 @@ public:
     s32 continueList();
     s32 setCallback(u32 signalFunc, u32 signalArg, u32 finishFunc, u32 finishArg);
     s32 unsetCallback(s32 cbid);
-    // 512-word context (ppdmp-format.md §5 layout); fail with kErrorBusy while a list is drawing.
+    // 512-word context (docs/ppdmp.md §5 layout); fail with kErrorBusy while a list is drawing.
     s32 saveContext(u32 out[512]);
     s32 restoreContext(const u32 in[512]);
     // Same through guest memory (alignment and range checked).

@@ -1,4 +1,5 @@
-// Texture decoding (manual §13; ge-reference.md §6).
+// SPDX-License-Identifier: MIT
+// Texture decoding (manual §13; docs/ge-rules.md §6).
 //
 // One decode per texture level: the source bytes are fetched once (bounds-checked, unreadable
 // bytes read as zero), swizzled storage is unswizzled block-wise into a linear copy, and a
@@ -25,15 +26,15 @@ inline bool validLevel(int level) { return level >= 0 && level < 8; }
 // Bytes holding the first `w` texels of a row.
 inline u32 rowBytes(u32 w, u32 bits) { return (w * bits + 7) / 8; }
 
-// Palette entry `i` (already limited to the palette size) in the CPF format (§6.4).
+// Palette entry `i` (already limited to the palette size) in the CPF format (ge-rules.md §6.4).
 inline u32 paletteEntry(const GeState& st, u32 i) {
     const u32 cpf = st.CLUT_format();
     if (cpf == GE_FORMAT_8888) return readLE32(st.clut + 4 * (i & 0xFF));
     return decodePixel16(readLE16(st.clut + 2 * (i & 0x1FF)), GeBufferFormat(cpf));
 }
 
-// CSA in effect for a level: multi-CLUT moves CLUT4 level n to CSA + n (§6.4, PPSSPP). For CLUT8
-// the manual puts level 1 at +256 entries while PPSSPP applies no offset [conflict, §9 #2]; we
+// CSA in effect for a level: multi-CLUT moves CLUT4 level n to CSA + n (ge-rules.md §6.4, PPSSPP). For CLUT8
+// the manual puts level 1 at +256 entries while PPSSPP applies no offset [conflict, ge-rules.md §6.4]; we
 // follow PPSSPP, which is what the reference renders were produced with.
 inline u32 effectiveCsa(const GeState& st, int level) {
     u32 csa = st.CLUT_start();
@@ -88,7 +89,7 @@ void decodeLinear(const GeState& st, int level, GeTexFormat fmt, const u8* src, 
             if (fmt == GE_TFMT_CLUT8) {
                 for (u32 x = 0; x < w; ++x) o[x] = direct[row[x]];
             } else {
-                // Texel 2k in bits 3..0 of byte k, texel 2k+1 in bits 7..4 (§6.1).
+                // Texel 2k in bits 3..0 of byte k, texel 2k+1 in bits 7..4 (ge-rules.md §6.1).
                 for (u32 x = 0; x < w; ++x) o[x] = direct[(row[x >> 1] >> ((x & 1) * 4)) & 0xF];
             }
         }
@@ -105,7 +106,7 @@ void decodeLinear(const GeState& st, int level, GeTexFormat fmt, const u8* src, 
     }
 }
 
-// DXT colour block (bytes 0–7, PSP order: indices first, §6.5).
+// DXT colour block (bytes 0–7, PSP order: indices first, ge-rules.md §6.5).
 struct DxtColors {
     u32 c[4];
 };
@@ -161,7 +162,7 @@ void decodeDxt5Block(const u8* block, u32 out[16]) {
     u32 alpha[8];
     alpha[0] = a0;
     alpha[1] = a1;
-    // Interpolation exactly as ref §6.5 (each division truncating, + 31 >> 8).
+    // Interpolation exactly as ge-rules.md §6.5 (each division truncating, + 31 >> 8).
     if (a0 > a1) {
         for (u32 n = 1; n <= 6; ++n) alpha[n + 1] = ((a0 * (7 - n) * 256) / 7 + (a1 * n * 256) / 7 + 31) >> 8;
     } else {
@@ -189,7 +190,7 @@ TextureLevelInfo textureLevelInfo(const GeState& st, int level) {
     if (!validLevel(level)) return info;
     info.addr = st.textureAddr(level);
     info.bufw = st.textureBufWidth(level);
-    // Exponents above 9 saturate at 512 (§6.2: addressing saturates at 511).
+    // Exponents above 9 saturate at 512 (ge-rules.md §6.2: addressing saturates at 511).
     info.width = st.textureWidth(level);
     info.height = st.textureHeight(level);
     return info;
@@ -202,14 +203,14 @@ u32 textureLevelBytes(const GeState& st, int level) {
     if (bits == 0) return 0;
     const TextureLevelInfo li = textureLevelInfo(st, level);
     if (isDxt(fmt)) {
-        // Rows of bufw/4 blocks (§6.2); the last block row needs only the blocks the width covers.
+        // Rows of bufw/4 blocks (ge-rules.md §6.2); the last block row needs only the blocks the width covers.
         const u32 blockBytes = fmt == GE_TFMT_DXT1 ? 8 : 16;
         const u32 blocksPerRow = li.bufw / 4, blockRows = (li.height + 3) / 4;
         return ((blockRows - 1) * blocksPerRow + (li.width + 3) / 4) * blockBytes;
     }
     const u32 pitch = rowBytes(li.bufw, bits);
     if (st.TMODE_swizzle()) {
-        // 16-byte × 8-row blocks; the height is used in multiples of 8 rows (§6.3).
+        // 16-byte × 8-row blocks; the height is used in multiples of 8 rows (ge-rules.md §6.3).
         const u32 blockRows = (li.height + 7) / 8;
         const u32 cols = (rowBytes(li.width, bits) + 15) / 16;
         return ((blockRows - 1) * (pitch / 16) + cols) * 128;
@@ -218,7 +219,7 @@ u32 textureLevelBytes(const GeState& st, int level) {
 }
 
 u32 clutLookup(const GeState& st, u32 rawIndex, int level) {
-    // i = ((t >> SFT) & MSK) | (CSA << 4): CSA is OR-ed, not added (§6.4, observed: pat gpu/clut).
+    // i = ((t >> SFT) & MSK) | (CSA << 4): CSA is OR-ed, not added (ge-rules.md §6.4, observed: pat gpu/clut).
     const u32 i = ((rawIndex >> st.CLUT_shift()) & st.CLUT_mask()) | (effectiveCsa(st, level) << 4);
     return paletteEntry(st, i);  // limited to 0xFF (32-bit palette) or 0x1FF (16-bit) inside
 }
@@ -269,7 +270,7 @@ bool decodeTextureLevel(const Memory& mem, const GeState& st, int level, std::ve
     const bool ok = bytes == 0 || src.whole();
 
     if (isDxt(fmt)) {
-        // DXT is never swizzled (§6.3). Block (bx, by) at (by * bufw/4 + bx) * blockBytes (§6.2).
+        // DXT is never swizzled (ge-rules.md §6.3). Block (bx, by) at (by * bufw/4 + bx) * blockBytes (ge-rules.md §6.2).
         const u32 blockBytes = fmt == GE_TFMT_DXT1 ? 8 : 16;
         const u32 blocksPerRow = li.bufw / 4, rowBlocks = (li.width + 3) / 4;
         u32 texels[16];
@@ -292,7 +293,7 @@ bool decodeTextureLevel(const Memory& mem, const GeState& st, int level, std::ve
 
     const u32 pitch = rowBytes(li.bufw, bits);
     if (st.TMODE_swizzle()) {
-        // Unswizzle block-wise into a linear copy of `cols` 16-byte columns per row (§6.3): block
+        // Unswizzle block-wise into a linear copy of `cols` 16-byte columns per row (ge-rules.md §6.3): block
         // row b (8 texel rows) is the cols * 128 bytes from b * pitch * 8.
         const u32 cols = (rowBytes(li.width, bits) + 15) / 16;
         const u32 linPitch = cols * 16;

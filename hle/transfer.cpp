@@ -1,4 +1,5 @@
-// Block transfer (CMD_XSTART): ge-reference.md §3.11.
+// SPDX-License-Identifier: MIT
+// Block transfer (CMD_XSTART): docs/ge-rules.md §3.11.
 //
 // Row r copies width·bpp bytes from src + ((sy + r)·srcW + sx)·bpp to dst + ((dy + r)·dstW + dx)·bpp.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Basic integer types and small helpers shared by every part of ge2gl.
 #pragma once
 #include <cstdint>
@@ -14,7 +15,7 @@ using s16 = std::int16_t;
 using s32 = std::int32_t;
 using s64 = std::int64_t;
 
-// GE "float24": the top 24 bits of an IEEE single (ge-reference.md §1.2).
+// GE "float24": the top 24 bits of an IEEE single (docs/ge-rules.md §1.2).
 inline float float24(u32 arg) {
     u32 bits = arg << 8;
     float f;

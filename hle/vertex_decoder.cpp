@@ -1,4 +1,5 @@
-// Vertex decoding (manual §6, §7; ge-reference.md §5).
+// SPDX-License-Identifier: MIT
+// Vertex decoding (manual §6, §7; docs/ge-rules.md §5).
 #include "hle/vertex_decoder.h"
 
 #include <algorithm>
@@ -35,7 +36,7 @@ VertexReader::VertexReader(const Memory& mem, const GeState& st, u32 vtype)
 
 u32 VertexReader::stride() const { return stride_; }
 const VertexLayout& VertexReader::layout() const { return layout_; }
-bool VertexReader::hasColor() const { return ((vtype_ >> 2) & 7) >= 4; }  // CT 1–3: invalid, no colour (§5.1)
+bool VertexReader::hasColor() const { return ((vtype_ >> 2) & 7) >= 4; }  // CT 1–3: invalid, no colour (ge-rules.md §5.1)
 bool VertexReader::hasNormal() const { return ((vtype_ >> 5) & 3) != 0; }
 bool VertexReader::hasUV() const { return (vtype_ & 3) != 0; }
 bool VertexReader::hasWeights() const { return ((vtype_ >> 9) & 3) != 0; }
@@ -50,12 +51,12 @@ u32 VertexReader::indexSize() const {
 
 namespace {
 
-// Decodes one stored copy at p (layout size bytes, already bounds-checked) per §5.4.
+// Decodes one stored copy at p (layout size bytes, already bounds-checked) per ge-rules.md §5.4.
 void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawVertex& r) {
     const u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
     const u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
 
-    // Weights: u8 /128, u16 /32768, float; not renormalised (§5.4).
+    // Weights: u8 /128, u16 /32768, float; not renormalised (ge-rules.md §5.4).
     if (wt) {
         const u8* q = p + l.weightOff;
         for (u32 i = 0; i < wc; ++i) {
@@ -67,7 +68,7 @@ void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawV
         }
     }
     // Texture coordinates: transform mode u8 /128, u16 /32768; through mode u16 are texels and
-    // u8 keeps /128 as PPSSPP does (§5.4).
+    // u8 keeps /128 as PPSSPP does (ge-rules.md §5.4).
     if (tc) {
         const u8* q = p + l.tcOff;
         switch (tc) {
@@ -90,7 +91,7 @@ void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawV
             break;
         }
     }
-    // Colour: 16-bit formats expand by bit replication (§5.4); 8888 bytes R, G, B, A.
+    // Colour: 16-bit formats expand by bit replication (ge-rules.md §5.4); 8888 bytes R, G, B, A.
     if (col >= 4) {
         const u8* q = p + l.colOff;
         u32 c;
@@ -113,7 +114,7 @@ void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawV
             }
         }
     }
-    // Position (§5.4): transform mode s8 /128, s16 /32768, float. Through mode: s8 decodes as 0
+    // Position (ge-rules.md §5.4): transform mode s8 /128, s16 /32768, float. Through mode: s8 decodes as 0
     // (observed: SWR), s16 gives signed X, Y and unsigned Z, float Z is clamped to 0–65535.
     if (pos) {
         const u8* q = p + l.posOff;
@@ -164,7 +165,7 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
     if (copies == 1) {
         decodeRaw(p, vtype_, layout_, thru, sum);
     } else {
-        // P' = Σ Mi·Pi over every component (manual Equation 7-1, ref §5.5); weights not normalised.
+        // P' = Σ Mi·Pi over every component (manual Equation 7-1, ge-rules.md §5.5); weights not normalised.
         for (u32 m = 0; m < copies; ++m) {
             RawVertex r;
             decodeRaw(p + size_t(m) * layout_.size, vtype_, layout_, thru, r);
@@ -186,7 +187,7 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
     if (hasColor()) {
         for (int i = 0; i < 4; ++i) out.color[i] = colorToU8(sum.col[i]);
     } else {
-        // No vertex colour: material ambient colour and alpha (ref §5.5).
+        // No vertex colour: material ambient colour and alpha (ge-rules.md §5.5).
         const u32 mac = st_.MAC_rgb();
         out.color[0] = u8(mac);
         out.color[1] = u8(mac >> 8);
@@ -224,7 +225,7 @@ bool VertexReader::readIndices(u32 iaddr, u32 count, std::vector<u32>& out) cons
 
 void applySkinning(const GeState& st, u32 vtype, DecodedVertex& v) {
     const u32 wt = (vtype >> 9) & 3;
-    if (wt == 0 || ((vtype >> 23) & 1)) return;  // skinning is transform-mode only (§5.5)
+    if (wt == 0 || ((vtype >> 23) & 1)) return;  // skinning is transform-mode only (ge-rules.md §5.5)
     const u32 n = ((vtype >> 14) & 7) + 1;
     float pos[3] = {}, nrm[3] = {};
     for (u32 b = 0; b < n; ++b) {
@@ -232,7 +233,7 @@ void applySkinning(const GeState& st, u32 vtype, DecodedVertex& v) {
         // A zero weight contributes nothing; skipping it keeps unused (possibly garbage) bone
         // matrices from turning the result into NaN.
         if (w == 0.0f) continue;
-        const float* m = st.bone + 12 * b;  // element k = row k%3, column k/3 (§3.4)
+        const float* m = st.bone + 12 * b;  // element k = row k%3, column k/3 (ge-rules.md §3.4)
         for (int r = 0; r < 3; ++r) {
             const float p = m[r] * v.pos[0] + m[3 + r] * v.pos[1] + m[6 + r] * v.pos[2] + m[9 + r];
             const float q = m[r] * v.nrm[0] + m[3 + r] * v.nrm[1] + m[6 + r] * v.nrm[2];

@@ -1,4 +1,5 @@
-// Vertex decoding (manual §6, §7; ge-reference.md §5): the one reference implementation of the
+// SPDX-License-Identifier: MIT
+// Vertex decoding (manual §6, §7; docs/ge-rules.md §5): the one reference implementation of the
 // VTYPE formats, morphing, skinning and index reading, shared by both backends and BBOX.
 #pragma once
 #include <string>
@@ -12,14 +13,14 @@ namespace ge {
 
 struct DecodedVertex {
     // Transform mode: model space (s8 /128, s16 /32768, float). Through mode: x, y drawing
-    // coordinates, z 0..65535 (ref §5.4).
+    // coordinates, z 0..65535 (ge-rules.md §5.4).
     float pos[3] = {};
     // Transform mode: u8 /128, u16 /32768, float. Through mode: texels.
     // A format without UV or normal gives the vertex unit's last ones (GeState::latchUV/Normal).
     float uv[2] = {};
     float nrm[3] = {};
     float weights[8] = {};
-    // RGBA; MAC RGB + MAA alpha when the format has no colour (ref §5.5).
+    // RGBA; MAC RGB + MAA alpha when the format has no colour (ge-rules.md §5.5).
     u8 color[4] = {};
 };
 
@@ -57,7 +58,7 @@ private:
 };
 
 // Skinning (WT≠0, transform mode): pos = Σ w_i·(Bone_i·(pos,1)), nrm = Σ w_i·(Bone_i 3x3·nrm),
-// in place (manual §7.2, ref §5.5).
+// in place (manual §7.2, ge-rules.md §5.5).
 void applySkinning(const GeState& st, u32 vtype, DecodedVertex& v);
 
 // Convenience: the draw's vertices in draw order (indices resolved), skinning applied.

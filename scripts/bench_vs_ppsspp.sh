@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Whole-process speed of ge2gl against PPSSPP's headless build on the same dumps (issue 10), as
+# SPDX-License-Identifier: MIT
+# Whole-process speed of ge2gl against PPSSPP's headless build on the same dumps, as
 # paired runs: for each dump and mode, N rounds of "ge2gl, PPSSPP" in alternating order, the ratio
 # of each pair's wall times, and the median of those ratios (per dump, over all dumps, and over the
 # five dumps PPSSPP takes longest on). Peak RSS of each side too.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs scripts/bench_vs_ppsspp.sh against a stand-in for PPSSPPHeadless (CI has no PPSSPP): a
 # script that accepts PPSSPP's options, writes the screenshot, takes a fixed 0.2 s for
 # --graphics=software and fails for --graphics=gles as a build without a headless GL context does.

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Every dump of at most 1 MiB must end with a clean exit (0 or 1, one message line) within 10 s and
-# 1 GiB peak memory, with either backend (issue 12). Usage:
+# 1 GiB peak memory, with either backend. Usage:
 #   scripts/check_dumps.sh [BUILD_DIR] DUMP_OR_DIR...
 # With no dumps given it checks the hostile dumps of tests/hostile_dumps.h (written by
 # write_hostile_dumps). Prints one line per dump and backend, then a summary; exits non-zero when

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Checks that ge2gl can be used as an emulator would use it (docs/install.md). Usage:
 #   scripts/check_install.sh [BUILD_DIR]        (default: build; BUILD_DIR must be configured)
 # 1. cmake --install BUILD_DIR into a temporary prefix; checks the installed files: libge2gl.so →

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the README's GNU parallel recipe (the sh block after "with GNU parallel") exactly as it is
 # written, from the project root, and checks that the merged file holds every frametest once
-# (issue 15: "the GNU parallel recipe in the README works as written").
+# (the README promises that the recipe works as written).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"

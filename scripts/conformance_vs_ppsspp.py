@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Which hardware checkpoints PPSSPP fails, and which of those ge2gl passes (issue 13).
+# SPDX-License-Identifier: MIT
+"""Which hardware checkpoints PPSSPP fails, and which of those ge2gl passes (docs/conformance.md).
 
     PPSSPP_HEADLESS=/path/to/PPSSPPHeadless PSPAUTOTESTS=/path/to/pspautotests \
         python3 scripts/conformance_vs_ppsspp.py [BUILD_DIR]

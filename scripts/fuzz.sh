@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Builds the libFuzzer harnesses (clang, ASan + UBSan + float-cast-overflow; tests/fuzz/) in
 # build-fuzz/, makes their seed corpora from the project's dumps (and ../shared/frametests when
 # present), and runs each harness for SECONDS. docs/fuzzing.md.

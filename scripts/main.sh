@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The main job: set up, build, render the bundled dumps/ into out/ with both backends and print
 # comparison tables (each backend against the checked-in expected images, GL against the software model).
 set -euo pipefail

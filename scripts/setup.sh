@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian 12 packages ge2gl needs, only those that are missing. Run as root (or with sudo).
 set -euo pipefail
 pkgs=(cmake ninja-build g++ pkg-config libosmesa6-dev libegl-dev libgl-dev libglm-dev libgtest-dev libgmock-dev

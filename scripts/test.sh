@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Set up, build and run the whole test suite, then the same tests under ASan+UBSan, then the
 # software model's tests and every dump with 4 band threads under ThreadSanitizer, then every
 # libFuzzer harness for 30 s (scripts/fuzz.sh; fails on any finding).

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: MIT
 // GLSL generator of the GL hardware mode's geometry shader (see hw_vertex.h): everything the CPU
 // path does with a whole transform-mode triangle, translator/vertex_pipeline.cpp
 // VertexPipeline::triangle line by line:
-//   1. geometry/clip.cpp discardPrimitive (ge-reference §8.5): an invalid or `outside` vertex
+//   1. geometry/clip.cpp discardPrimitive (docs/ge-rules.md §8.5): an invalid or `outside` vertex
 //      drops the triangle; CLE = 0: any vertex beyond a depth side drops it, CLE = 1: only all
 //      three beyond the same side; then the triangle whose three vertices have w < 0.
 //   2. A vertex beyond the near plane (clip.h beyondNear): clipTriangleNear on the reference's
@@ -254,14 +255,14 @@ void main() {
   }
 #if GE_THROUGH
   // Through mode: no discard rules and no near clipping (VertexPipeline::triangle), only a
-  // vertex without a position drops the triangle (ClipVertex::valid, §8.11).
+  // vertex without a position drops the triangle (ClipVertex::valid, ge-rules.md §8.11).
   for (int i = 0; i < 3; ++i)
     if ((flags[i] & 8) != 0) return;
 #else
-  // discardPrimitive (§8.5).
+  // discardPrimitive (ge-rules.md §8.5).
   int nearCount = 0, farCount = 0;
   for (int i = 0; i < 3; ++i) {
-    if ((flags[i] & 9) != 0) return;  // outside, or no position (§8.11)
+    if ((flags[i] & 9) != 0) return;  // outside, or no position (ge-rules.md §8.11)
     nearCount += (flags[i] >> 1) & 1;
     farCount += (flags[i] >> 2) & 1;
   }
@@ -359,7 +360,7 @@ bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::str
          "noperspective out float v_fog;\n"
          "noperspective out float v_z;\n";
     // No position in the format (k.pos == 0): the vertex shader flags every vertex (8), so
-    // discardPrimitive drops every primitive (§8.11).
+    // discardPrimitive drops every primitive (ge-rules.md §8.11).
     s += kBody;
     out = std::move(s);
     return true;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL text for reading the hardware mode's uniform block (HwVsUniforms laid out as uvec4 u_hw[],
 // shadergen/hw_vertex.h) and for exact float literals: shared by the vertex shader generator
 // (hw_vertex.cpp) and the geometry-stage generator (hw_geometry.cpp). Internal to shadergen/.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL generator of the GL hardware mode's vertex shader (see hw_vertex.h).
 //
 // Every statement mirrors a line of the CPU code all backends run (named in the comments), in the
@@ -11,7 +12,7 @@
 // Near-plane clipping. With the geometry shader (key.geometryShader = 1, hw_geometry.cpp) the
 // vertex shader only hands on the CPU's ClipVertex and the geometry shader clips, culls and drops
 // exactly as translator/vertex_pipeline.cpp does. The vertex shader alone (key.geometryShader = 0,
-// legacy until the translator attaches the geometry shader) leaves the cut to GL's clipper. The
+// which the translator never asks for; the tests compile it) leaves the cut to GL's clipper. The
 // CPU clipper (geometry/clip.cpp clipTriangleNear/lerpVertex) cuts a triangle at z = −w in clip
 // space and gives the new vertex the clip-space interpolation of every attribute (colours with an
 // 8-bit weight), then snaps it to the 1/16 grid. Alone, GL's clipper does it (gl_ClipDistance[0]
@@ -285,7 +286,7 @@ void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
             acc(std::string("pos.") + kXyz[i], fixedOrFloat(k.pos, true, at(b, l.posOff + i * compSize(k.pos))));
     }
     // Vertex colour: morphed sums truncated after limiting to 0–255 (colorToU8); without a colour
-    // in the format, MAC and MAA (ge-reference §5.5).
+    // in the format, MAC and MAA (docs/ge-rules.md §5.5).
     if (decColor) {
         s += "  ivec4 vcol;\n"
              "  for (int i = 0; i < 4; ++i) vcol[i] = colf[i] > 0.0 ? (colf[i] >= 255.0 ? 255 : int(colf[i])) : 0;\n";
@@ -328,7 +329,7 @@ void emitLighting(std::string& s, const HwVsKey& k) {
          ";\n";
     s += std::string("  ivec3 mdc = ") + (k.diffuseFromVertex ? "vc.rgb" : ivec3At(HW_WORD(matDiffuse))) + ";\n";
     s += std::string("  ivec3 msc = ") + (k.specularFromVertex ? "vc.rgb" : ivec3At(HW_WORD(matSpecular))) + ";\n";
-    // Emission + global ambient (equation 9-1, ge-reference §8.3); lit alpha = AA ⊙ MAA (§8.12).
+    // Emission + global ambient (equation 9-1, ge-rules.md §8.3); lit alpha = AA ⊙ MAA (ge-rules.md §8.12).
     s += "  ivec4 lc;\n"
          "  lc.rgb = " + ivec3At(HW_WORD(emissive)) + " + ((" + ivec3At(HW_WORD(globalAmbient)) + " * mac.rgb) >> 10);\n"
          "  lc.a = (" + ui(HW_WORD(globalAmbient) + 3) + " * mac.a) >> 10;\n"
@@ -354,7 +355,7 @@ void emitLighting(std::string& s, const HwVsKey& k) {
         }
         if (type == 3) {
             // Spot: cos = LD·L, L = light − vertex (geometry/lighting.cpp: hardware-measured sign,
-            // not the manual's 9-4); counts when cos ≥ LKO (§8.9).
+            // not the manual's 9-4); counts when cos ≥ LKO (ge-rules.md §8.9).
             // A forced cosine (≥ 0) stands for a direction that cannot be normalised.
             s += "    PRECISE float raw = " + uf(sp + 2) + " >= 0.0 ? " + uf(sp + 2) + " : (" + uf(sd) + " * L.x + " +
                  uf(sd + 1) + " * L.y) + " + uf(sd + 2) + " * L.z;\n"
@@ -376,7 +377,7 @@ void emitLighting(std::string& s, const HwVsKey& k) {
              "        lc.rgb += (" + ivec3At(HW_WORD(lightDiffuse) + 4 * n) + " * mdc * lightScale(kd)) >> 19;\n"
              "      }\n";
         if (comp == 1) {
-            // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (§8.12).
+            // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (ge-rules.md §8.12).
             s += "      if (ndotl >= 0.0) {\n"
                  "        PRECISE vec3 H = vec3(L.x, L.y, L.z + 1.0);\n"
                  "        normalizeOr001(H);\n"
@@ -395,7 +396,7 @@ void emitLighting(std::string& s, const HwVsKey& k) {
          "  ivec3 sec = clamp(spec, 0, 255);\n";
 }
 
-// Texture coordinates s, t, q (geometry/transform.cpp transformVertex, §13.1, §13.2, §8.10).
+// Texture coordinates s, t, q (geometry/transform.cpp transformVertex, manual §13.1, §13.2; ge-rules.md §8.10).
 void emitTexture(std::string& s, const HwVsKey& k) {
     s += "  PRECISE float ts = 0.0, tt = 0.0, tq = 1.0;\n";
     if (k.texMap == 1) {
@@ -478,7 +479,7 @@ void emitThrough(std::string& s, const HwVsKey& k, bool gs) {
     }
     }
     // Texture coordinates: u8 /128, u16 texels as they are, float as stored; then s = u/width0,
-    // t = v/height0 (§8.10), q = 1.
+    // t = v/height0 (ge-rules.md §8.10), q = 1.
     s += "  PRECISE float ts = 0.0, tt = 0.0;\n";
     if (k.texture && k.tc) {
         const int c = compSize(k.tc);
@@ -573,7 +574,7 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
     s += kHelpers;
     s += "void main() {\n";
     if (k.pos == 0) {
-        // No position: the vertex is dropped (§8.11).
+        // No position: the vertex is dropped (ge-rules.md §8.11).
         if (gs) {
             s += "  g_clip = vec4(0.0, 0.0, 0.0, 1.0);\n  g_color = ivec4(0);\n  g_color2 = ivec3(0);\n"
                  "  g_stqf = vec4(0.0, 0.0, 1.0, 1.0);\n  g_scr = ivec4(0, 0, 0, 8);\n}\n";
@@ -617,7 +618,7 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
     if (worldPos) mul4x4(s, "clip", HW_WORD(viewProj), "world");
     else mul4x4(s, "clip", HW_WORD(worldViewProj), "model");
 
-    // Fog factor from view-space Z (§3.9): (z_view + end)·slope, or the draw's fixed value.
+    // Fog factor from view-space Z (ge-rules.md §3.9): (z_view + end)·slope, or the draw's fixed value.
     if (k.fog) {
         const int v = HW_WORD(view);
         s += "  PRECISE float fogF;\n"
@@ -644,7 +645,7 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
         s += "  ivec4 prim = vcol;\n  ivec3 sec = ivec3(0);\n";
     }
 
-    // ---- screen (projectToScreen): scale, divide by w, add the centre; range flags (§8.5) ----
+    // ---- screen (projectToScreen): scale, divide by w, add the centre; range flags (ge-rules.md §8.5) ----
     const int vp = HW_WORD(viewport);
     s += "  PRECISE float w = clip.w;\n"
          "  PRECISE float xm = clip.x * " + uf(vp) + ";\n"
@@ -731,7 +732,7 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
         s += "  gl_CullDistance[0] = 1.0;\n"
              "  gl_CullDistance[1] = 1.0;\n";
     }
-    // Three vertices with w < 0: dropped (§8.5).
+    // Three vertices with w < 0: dropped (ge-rules.md §8.5).
     s += "  gl_CullDistance[2] = w < 0.0 ? -1.0 : 1.0;\n"
          "#endif\n"
          "}\n";

@@ -1,4 +1,5 @@
-// GL hardware mode (issue 16): the GE's vertex work in a generated vertex shader, and the
+// SPDX-License-Identifier: MIT
+// GL hardware mode: the GE's vertex work in a generated vertex shader, and the
 // whole-primitive work (discard rules, near-plane clipping, culling) in a generated geometry shader.
 //
 // The vertex shader reproduces, per vertex and with the same float operation order, what every
@@ -8,10 +9,10 @@
 //                           world·view·proj or view·proj product, the GE's matrix term rule
 //                           (geTerm), viewport, 1/16-pixel snap x16 = trunc(Xs·16 + 0.375) − OFFX,
 //                           depth clamp, fog factor, texture mapping (UV, projection, shade)
-//   geometry/lighting       the fixed-point light combination of ge-reference §8.3
+//   geometry/lighting       the fixed-point light combination of docs/ge-rules.md §8.3
 // The geometry shader (HwVsKey::geometryShader = 1, generateHwGeometryShader) reproduces
 // translator/vertex_pipeline.cpp VertexPipeline::triangle for transform-mode triangles:
-//   geometry/clip           discardPrimitive (§8.5), the all-w < 0 drop, clipTriangleNear with
+//   geometry/clip           discardPrimitive (ge-rules.md §8.5), the all-w < 0 drop, clipTriangleNear with
 //                           lerpVertex (clip-space interpolation, 8-bit colour weights, the new
 //                           vertex projected and snapped), the fan-piece drop for new vertices off
 //                           the 4096² screen, the rotation rule for negatively wound polygons, in
@@ -40,9 +41,9 @@
 //   g_stqf    vec4         s, t, q, fog factor (ScreenVertex::s/t/q/fog; s, t, q = 0, 0, 1
 //                          without texturing, fog 1 without fog)
 //   g_scr     flat ivec4   x16, y16 (drawing position in 1/16 pixel), z (depthToInt of the
-//                          clamped screen Z), flags: 1 outside (§8.5 range rule), 2 beyond the
+//                          clamped screen Z), flags: 1 outside (ge-rules.md §8.5 range rule), 2 beyond the
 //                          near side and 4 beyond the far side of the depth range (depthSide),
-//                          8 no position (§8.11: every primitive using it is dropped)
+//                          8 no position (ge-rules.md §8.11: every primitive using it is dropped)
 // Geometry shader outputs (the fragment shader's non-exact inputs, shader_gen.cpp, as toGl and
 // emitTriangle compute them from ScreenVertex):
 //   v_color  (flat | noperspective) vec4   primary RGBA 0..255 (flat: the original triangle's
@@ -80,12 +81,12 @@
 // budget (VertexPipeline::notePrimitive) is not applied; strips whose quads the CPU draws as
 // rectangles (geometry/assembly.h stripQuadAsRect, culling off) are the caller's to keep away.
 //
-// ---- Without (key.geometryShader = 0: the vertex shader alone; kept until the translator
-// attaches the geometry shader, then to be removed) ----
+// ---- Without (key.geometryShader = 0: the vertex shader alone; the translator always attaches
+// the geometry shader (translator/gpu_vertex_path.cpp), so only the tests compile this form) ----
 // Outputs v_color, v_color2, v_tex, v_fog, v_z as above per vertex, and
 //   gl_Position  (ndc.x·w, ndc.y·w, 0, w): ndc from the snapped drawing position as above, w the
 //                clip W so that GL's clipper can cut the GE's near plane. A vertex that breaks a
-//                §8.5 "drop the primitive" rule gets a NaN position (the rasteriser then draws no
+//                ge-rules.md §8.5 "drop the primitive" rule gets a NaN position (the rasteriser then draws no
 //                primitive using it, as PPSSPP's GLES vertex shader does).
 //   gl_ClipDistance[0] = z_clip + w_clip: the GE's near plane (geometry/clip.h beyondNear). The
 //                caller must glEnable(GL_CLIP_DISTANCE0), and culls with GL face culling.
@@ -113,25 +114,25 @@ namespace ge::shadergen {
 // Zero-initialised POD compared and hashed byte-wise (keyEqual / KeyHash), canonical after
 // canonicalize(): fields that cannot change the generated source are cleared.
 struct HwVsKey {
-    // ---- vertex format (CMD_VTYPE, ge-reference §5.1). All layout fields are kept even when
-    // their value is not used, because they set the component offsets and the stride (§5.2). ----
+    // ---- vertex format (CMD_VTYPE, ge-rules.md §5.1). All layout fields are kept even when
+    // their value is not used, because they set the component offsets and the stride (ge-rules.md §5.2). ----
     u8 tc = 0;           // texture coordinates: 0 none, 1 u8, 2 u16, 3 float
     u8 col = 0;          // colour: 0 none (1–3 canonicalised to 0: no bytes, no colour), 4 5650,
                          // 5 5551, 6 4444, 7 8888
     u8 nrm = 0;          // normal: 0 none, 1 s8, 2 s16, 3 float
-    u8 pos = 0;          // position: 1 s8, 2 s16, 3 float; 0 = none: every vertex dropped (§8.11)
+    u8 pos = 0;          // position: 1 s8, 2 s16, 3 float; 0 = none: every vertex dropped (ge-rules.md §8.11)
     u8 weights = 0;      // skinning weights: 0 none, 1 u8, 2 u16, 3 float
     u8 weightCount = 0;  // 1–8 with weights, else 0
     u8 morphCount = 0;   // 1–8 stored copies (MC + 1)
-    // ---- lighting (CMD_LTE, LE, LTYPE, MATERIAL, LMODE; ge-reference §3.6, §8.3, §8.12) ----
+    // ---- lighting (CMD_LTE, LE, LTYPE, MATERIAL, LMODE; ge-rules.md §3.6, §8.3, §8.12) ----
     u8 lighting = 0;
     u8 lightType[4] = {};  // 0 off (LE = 0), 1 directional, 2 point, 3 spot (LTYPE type 2 and 3)
     u8 lightComp[4] = {};  // 0 ambient + diffuse, 1 + specular, 2 powered diffuse (3 → 0)
-    u8 ambientFromVertex = 0;   // MATERIAL bits, kept only with a vertex colour (§3.6)
+    u8 ambientFromVertex = 0;   // MATERIAL bits, kept only with a vertex colour (ge-rules.md §3.6)
     u8 diffuseFromVertex = 0;
     u8 specularFromVertex = 0;
     u8 separateSpecular = 0;    // LMODE = 1 (kept only with a specular light)
-    // ---- texture coordinates (CMD_TMAP, §13.1, §13.2, ge-reference §8.10) ----
+    // ---- texture coordinates (CMD_TMAP, manual §13.1, §13.2, ge-rules.md §8.10) ----
     u8 texture = 0;      // texturing on: v_tex is computed
     u8 texMap = 0;       // 0 UV (TMAP mode 3 behaves as 0), 1 projection, 2 shade mapping
     u8 projSource = 0;   // TMAP bits 9..8 with projection: 0 model position, 1 UV, 2 normalised
@@ -139,15 +140,15 @@ struct HwVsKey {
     // ---- the rest ----
     u8 fog = 0;          // fog factor per vertex (FGE; else v_fog = 1)
     u8 normalReverse = 0;  // NREV, kept only when a normal is read and used
-    u8 clipEnable = 0;   // CLE: depth clamp and the discard rule (§8.5)
+    u8 clipEnable = 0;   // CLE: depth clamp and the discard rule (ge-rules.md §8.5)
     u8 flatShade = 0;    // SHADE = 0 or clear mode: colour outputs are `flat`
     // ---- set by the caller after hwVsKeyFromState (which leaves both 0) ----
     u8 geometryShader = 0;  // 1: the vertex shader feeds generateHwGeometryShader (see above);
-                            // 0: the vertex shader alone (legacy, GL clipping and culling)
+                            // 0: the vertex shader alone (GL clipping and culling; tests only)
     u8 primKind = 0;     // with geometryShader: the PRIM type drawn, 0 triangles (GL_TRIANGLES),
                          // 1 triangle strip (GL_TRIANGLE_STRIP), 2 triangle fan (GL_TRIANGLE_FAN);
                          // canonicalised to 0 without geometryShader or when above 2
-    // ---- through mode (VTYPE bit 23, ge-reference §5.5, §8.1) ----
+    // ---- through mode (VTYPE bit 23, ge-rules.md §5.5, §8.1) ----
     u8 through = 0;      // 1: positions and UV as given (no normalisation, no morphing, no
                          // skinning), no transform, lighting, texture mapping, fog, discard rules
                          // or near clipping; culling and flat shading as in transform mode.
@@ -166,7 +167,7 @@ std::string describe(const HwVsKey& k);
 // mode); `fog`: FGE (VertexSettings::fog; ignored in through mode). Canonicalised.
 HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog);
 
-// Bytes per vertex (one vertex times its morph copies, ge-reference §5.2) of a key.
+// Bytes per vertex (one vertex times its morph copies, ge-rules.md §5.2) of a key.
 u32 hwVsStride(const HwVsKey& k);
 
 // Every value the shader reads, as 4-byte words, uploaded in one call:
@@ -179,13 +180,13 @@ struct HwVsUniforms {
     // world position when a positional light needs the world position.
     float worldViewProj[16];
     float viewProj[16];
-    float world[12], view[12], tgen[12];  // 3×4, element k = row k%3, column k/3 (§3.4)
+    float world[12], view[12], tgen[12];  // 3×4, element k = row k%3, column k/3 (ge-rules.md §3.4)
     float bones[96];                      // 8 bone matrices, 3×4 each
     float morph[8];                       // CMD_WEIGHT0–7
     float viewport[8];                    // SX, SY, SZ, TX, TY, TZ, 0, 0
     s32 offset16[4];                      // OFFSETX, OFFSETY (1/16 pixel), 0, 0
     float uvScale[4];                     // SU, SV, TU, TV
-    float fog[4];                         // end (FOG1), slope (FOG2 after the §8.9 rule), 0, 0
+    float fog[4];                         // end (FOG1), slope (FOG2 after the ge-rules.md §8.9 rule), 0, 0
     s32 fogFixed[4];                      // −1 per vertex; 0/1: the whole draw (FOG1 not finite)
     u32 matColor[4];                      // MAC | MAA << 24: the colour of a vertex without one
     float shadeLight[8];                  // normalised TSHADE light positions (u: 0–2, v: 4–6)

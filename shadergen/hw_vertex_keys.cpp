@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL hardware mode vertex shaders: the key (canonical form, description, from GeState) and the
 // uniform block (from GeState). See hw_vertex.h; the generator is hw_vertex.cpp.
 #include <cstring>
@@ -26,7 +27,7 @@ void canonicalize(HwVsKey& k) {
     auto b = [](u8& v) { v = v ? 1 : 0; };
     k.tc &= 3;
     k.col &= 7;
-    if (k.col < 4) k.col = 0;  // CT 1–3: no bytes and no colour (ge-reference §5.1)
+    if (k.col < 4) k.col = 0;  // CT 1–3: no bytes and no colour (docs/ge-rules.md §5.1)
     k.nrm &= 3;
     k.pos &= 3;
     k.weights &= 3;
@@ -37,7 +38,7 @@ void canonicalize(HwVsKey& k) {
     // The primitive kind only changes the geometry shader (its ring order, hw_geometry.cpp).
     if (!k.geometryShader || k.primKind > 2) k.primKind = 0;
     if (k.pos == 0) {
-        // No position: every vertex is dropped (§8.11); only the layout remains meaningful (and
+        // No position: every vertex is dropped (ge-rules.md §8.11); only the layout remains meaningful (and
         // which outputs the vertex shader has).
         HwVsKey c;
         c.tc = k.tc, c.col = k.col, c.nrm = k.nrm, c.weights = k.weights, c.weightCount = k.weightCount;
@@ -77,17 +78,17 @@ void canonicalize(HwVsKey& k) {
             continue;
         }
         if (k.lightType[n] > 3) k.lightType[n] = 3;
-        if (k.lightComp[n] > 2) k.lightComp[n] = 0;  // LTYPE comp 3 behaves as 0 (§3.6)
+        if (k.lightComp[n] > 2) k.lightComp[n] = 0;  // LTYPE comp 3 behaves as 0 (ge-rules.md §3.6)
         anyLight = true;
         anySpecular |= k.lightComp[n] == 1;
     }
-    // Material update flags act only with a vertex colour (§3.6); diffuse and specular only when
+    // Material update flags act only with a vertex colour (ge-rules.md §3.6); diffuse and specular only when
     // a light uses them. Without lighting none of them, nor LMODE, matters.
     if (!k.lighting || k.col == 0) k.ambientFromVertex = k.diffuseFromVertex = k.specularFromVertex = 0;
     if (!anyLight) k.diffuseFromVertex = 0;
     if (!anySpecular) k.specularFromVertex = 0, k.separateSpecular = 0;
     if (!k.texture) k.texMap = 0;
-    if (k.texMap > 2) k.texMap = 0;  // TMAP mode 3 behaves as UV (§3.8)
+    if (k.texMap > 2) k.texMap = 0;  // TMAP mode 3 behaves as UV (ge-rules.md §3.8)
     k.projSource = k.texMap == 1 ? u8(k.projSource & 3) : 0;
     // NREV flips a normal read from the vertex; it matters where that normal is used.
     const bool normalUsed = k.lighting || k.texMap == 2 || (k.texMap == 1 && k.projSource >= 2);
@@ -171,7 +172,7 @@ HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog) {
     k.lighting = st.LTE_on();
     for (int n = 0; n < 4; ++n) {
         if (!st.LE_on(n)) continue;
-        const u32 type = st.LTYPE_type(n);  // 0 directional, 1 point, 2 and 3 spot (§3.6)
+        const u32 type = st.LTYPE_type(n);  // 0 directional, 1 point, 2 and 3 spot (ge-rules.md §3.6)
         k.lightType[n] = u8(type == 0 ? 1 : (type == 1 ? 2 : 3));
         k.lightComp[n] = u8(st.LTYPE_comp(n));
     }

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // State → keys, fixed-function decision and uniform values (see keys_from_state.h).
 #include "shadergen/keys_from_state.h"
 #include "geometry/reference_rules.h"
@@ -35,13 +36,13 @@ void canonicalize(VsKey& k) {
 void canonicalize(FsKey& k) {
     for (u8& r : k.reserved) r = 0;
     if (k.fbFormat == GE_FORMAT_565) {
-        // 5650 has no alpha/stencil bits to write or protect (ref §8.7).
+        // 5650 has no alpha/stencil bits to write or protect (docs/ge-rules.md §8.7).
         k.clearAlpha = 0;
         k.writeAlpha = 0;
         k.maskAlpha = 0;
     }
     if (k.clearMode) {
-        // Clear mode: no texturing, fog, tests, blending or logic op (ref §8.4).
+        // Clear mode: no texturing, fog, tests, blending or logic op (ge-rules.md §8.4).
         k.tex = 0;
         k.fog = 0;
         k.alphaTest = k.colorTest = 0;
@@ -61,13 +62,13 @@ void canonicalize(FsKey& k) {
         k.texMagLinear = k.texMinLinear = k.texMip = k.texLodMode = 0;
         k.texClampU = k.texClampV = 0;
     } else {
-        if (k.texFunc > 4) k.texFunc = 4;  // 5–7 behave as ADD (ref §3.8)
+        if (k.texFunc > 4) k.texFunc = 4;  // 5–7 behave as ADD (ge-rules.md §3.8)
         // The level of detail only matters when it can change the filter or the level.
         if (k.texMip == 0 && k.texMinLinear == k.texMagLinear) k.texLodMode = 0;
     }
     if (!k.stencilTest) k.sopFail = k.sopZFail = k.sopZPass = 0;
     if (!k.blend) k.blendA = k.blendB = 0;
-    if (k.blend >= 4) k.blendA = k.blendB = 0;  // MIN, MAX, ABS ignore the factors (ref §3.10)
+    if (k.blend >= 4) k.blendA = k.blendB = 0;  // MIN, MAX, ABS ignore the factors (ge-rules.md §3.10)
     if (k.dstRead == DstRead::None) {
         k.maskRgb = k.maskAlpha = 0;
         k.depthRead = DepthRead::None;
@@ -89,9 +90,9 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
     k.flatShade = out.vs.flatShade;
     k.fbFormat = fmt;
     k.dither = flags.dither ? 1 : 0;
-    k.depthRange = flags.through ? 0 : 1;  // ref §8.4 step 2: skipped in through mode only
+    k.depthRange = flags.through ? 0 : 1;  // ge-rules.md §8.4 step 2: skipped in through mode only
 
-    // PMSK1/PMSK2 in the frame-buffer format (ref §8.8): a 1 bit protects the stored bit.
+    // PMSK1/PMSK2 in the frame-buffer format (ge-rules.md §8.8): a 1 bit protects the stored bit.
     const u32 pm1 = st.PMSK1_rgb();
     const u8 keep[4] = {u8(pm1 & bits[0]), u8((pm1 >> 8) & bits[1]), u8((pm1 >> 16) & bits[2]),
                         u8(st.PMSK2_alpha() & bits[3])};
@@ -124,7 +125,7 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
             k.texClampU = st.TWRAP_uclamp() ? 1 : 0;
             k.texClampV = st.TWRAP_vclamp() ? 1 : 0;
         }
-        k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ref §3.9)
+        k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ge-rules.md §3.9)
         if (st.ATE_on() && st.ATEST_func() != 1 && !geo::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull))
             k.alphaTest = u8(st.ATEST_func() + 1);
         // The reference's implicit alpha != 0 test (geometry/reference_rules.h): code 9.
@@ -132,7 +133,7 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
         if (st.CTE_on() && st.CTEST_func() != 1) k.colorTest = u8(st.CTEST_func() + 1);
         if (st.STE_on() && fmt != GE_FORMAT_565) {
             // 5650 has no stencil bits: the stored value reads as 0 and is never written, but
-            // the test itself still runs against 0 (ref §8.7).
+            // the test itself still runs against 0 (ge-rules.md §8.7).
             k.stencilTest = u8(st.STEST_func() + 1);
             k.sopFail = u8(st.SOP_sfail() > 5 ? 0 : st.SOP_sfail());
             k.sopZFail = u8(st.SOP_zfail() > 5 ? 0 : st.SOP_zfail());

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // From GE state to shader keys, uniform values and the fixed-function part of the pipeline.
 // This is the only place in shadergen/ that reads GeState (style-anchors §7.1, §7.8): it decides,
 // per draw, which parts of the GE pixel pipeline run in the shader and which in GL fixed
@@ -9,7 +10,7 @@
 namespace ge::shadergen {
 
 // Per-draw switches that do not come from the register file alone (immediate-mode vertices carry
-// their own texture/fog/dither/shade flags, ref §3.12).
+// their own texture/fog/dither/shade flags, docs/ge-rules.md §3.12).
 struct DrawFlags {
     bool through = false;
     bool texture = false;
@@ -62,7 +63,7 @@ struct FsUniforms {
 };
 void uniformsFromState(const GeState& st, FsUniforms& u);
 
-// Bits of each 8-bit channel a frame-buffer format keeps (ref §8.8): 5650 F8/FC/F8/00, 5551
+// Bits of each 8-bit channel a frame-buffer format keeps (ge-rules.md §8.8): 5650 F8/FC/F8/00, 5551
 // F8/F8/F8/80, 4444 F0 each, 8888 FF each.
 void formatChannelBits(u8 fbFormat, u8 out[4]);
 

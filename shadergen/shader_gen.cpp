@@ -1,4 +1,5 @@
-// GLSL generators. Every formula cites the ge-reference.md row it implements; integer
+// SPDX-License-Identifier: MIT
+// GLSL generators. Every formula cites the docs/ge-rules.md section it implements; integer
 // arithmetic throughout so the result is the GE's, not an approximation in float.
 #include "shadergen/shader_gen.h"
 
@@ -10,7 +11,7 @@ namespace ge::shadergen {
 namespace {
 
 const char* compareExpr(int func) {
-    // GE compare codes (ref §3.10): 0 NEVER, 1 ALWAYS, 2 EQUAL, 3 NOTEQUAL, 4 LESS, 5 LEQUAL,
+    // GE compare codes (ge-rules.md §3.10): 0 NEVER, 1 ALWAYS, 2 EQUAL, 3 NOTEQUAL, 4 LESS, 5 LEQUAL,
     // 6 GREATER, 7 GEQUAL; the expression compares a OP b.
     switch (func & 7) {
         case 0: return "false";
@@ -32,7 +33,7 @@ void emitCompare(std::string& s, const char* name, int func) {
     s += "; }\n";
 }
 
-// Blend factor code → GLSL expression of an ivec3 (ref §3.10 factor table). cs/cd: source and
+// Blend factor code → GLSL expression of an ivec3 (ge-rules.md §3.10 factor table). cs/cd: source and
 // destination colour, as/ad: alphas, fix: FIXA or FIXB.
 std::string blendFactor(int code, bool isA) {
     const char* other = isA ? "cd" : "cs";  // code 0/1: A uses Cd, B uses Cs
@@ -48,12 +49,12 @@ std::string blendFactor(int code, bool isA) {
         case 7: return "ivec3(max(255 - 2 * as, 0))";
         case 8: return "ivec3(2 * ad)";
         case 9: return "ivec3(max(255 - 2 * ad, 0))";
-        default: return fix;  // 10–15: the fixed colour (ref §3.10)
+        default: return fix;  // 10–15: the fixed colour (ge-rules.md §3.10)
     }
 }
 
 std::string logicExpr(int op) {
-    // CMD_LOP codes (ref §3.10), s = fragment, d = frame buffer, 8-bit per channel.
+    // CMD_LOP codes (ge-rules.md §3.10), s = fragment, d = frame buffer, 8-bit per channel.
     switch (op & 15) {
         case 0: return "ivec3(0)";
         case 1: return "s & d";
@@ -237,7 +238,7 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
              "}\n";
     }
     if (k.fog) {
-        // fogToByte (raster.cpp, §8.9) of the interpolated factor, or the record's byte.
+        // fogToByte (raster.cpp, ge-rules.md §8.9) of the interpolated factor, or the record's byte.
         s += "int fogFactor() {\n"
              "  if (!" + flag(tri::kFlagFogVaries) + ") return int(" + hdr + ".y);\n"
              "  float f = interpF(recF(" + recTexel(tri::kFog) + "), g_w, wsumRecip());\n"
@@ -254,10 +255,10 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
 
 // Texel fetch from a render target sampled in place (FsKey::texTarget, hardware mode). u, v count
 // the target's texels (u_texScale per PSP texel); wrap and clamp work on the scaled sizes (ref
-// §8.10: clamp to min(w, 512) − 1, repeat modulo the power-of-two size). The origin (x, y) of the
+// ge-rules.md §8.10: clamp to min(w, 512) − 1, repeat modulo the power-of-two size). The origin (x, y) of the
 // texture in the target is u_texLevels[0].wx. The stored pixel (bit-replicated channels of the
 // frame-buffer format) is what a texture of the same format decodes to; another 16-bit format
-// re-encodes the buffer's 16 bits and decodes them as the texture's format (ge-reference §6.3).
+// re-encodes the buffer's 16 bits and decodes them as the texture's format (ge-rules.md §6.3).
 static void emitTargetTexel(std::string& s, const FsKey& k) {
     const int fb = k.texTarget - 1;
     s += "ivec4 texel(int lv, int u, int v) {\n"
@@ -266,7 +267,7 @@ static void emitTargetTexel(std::string& s, const FsKey& k) {
     s += k.texClampU ? "  u = clamp(u, 0, W - 1);\n" : "  u = ((u % W) + W) % W;\n";
     s += k.texClampV ? "  v = clamp(v, 0, H - 1);\n" : "  v = ((v % H) + H) % H;\n";
     // CLUT4/CLUT8 over a buffer: k texels share one pixel (its bytes or nibbles, low first, ref
-    // §6.1). u counts the texture's texels times u_texScale, so the pixel's scaled column is u / k
+    // ge-rules.md §6.1). u counts the texture's texels times u_texScale, so the pixel's scaled column is u / k
     // and the texel's place within the pixel (u / u_texScale) mod k.
     const bool clut = k.texFormat >= GE_TFMT_CLUT4 && k.texFormat <= GE_TFMT_CLUT32;
     const int bits = k.texFormat == GE_TFMT_CLUT4 ? 4 : (k.texFormat == GE_TFMT_CLUT8 ? 8 : 0);
@@ -278,7 +279,7 @@ static void emitTargetTexel(std::string& s, const FsKey& k) {
     if (clut) {
         // The pixel's bits give the index (the whole pixel for CLUT16 over a 16-bit buffer and
         // CLUT32 over 8888, a byte or nibble of it for CLUT8/CLUT4), masked as ((t >> SFT) & MSK)
-        // and looked up in the palette resolved per masked value (ref §6.4; hle/texture_decoder
+        // and looked up in the palette resolved per masked value (ge-rules.md §6.4; hle/texture_decoder
         // maskedPalette, which folds in CSA and the palette size).
         if (fb == GE_FORMAT_8888) {
             s += "  uint raw = uint(c.r) | (uint(c.g) << 8) | (uint(c.b) << 16) | (uint(c.a) << 24);\n";
@@ -304,7 +305,7 @@ static void emitTargetTexel(std::string& s, const FsKey& k) {
         s += "  return c;\n}\n";
         return;
     }
-    // The frame buffer's 16 bits (ref §8.8 stored form: the high bits of each channel).
+    // The frame buffer's 16 bits (ge-rules.md §8.8 stored form: the high bits of each channel).
     switch (fb) {
         case GE_FORMAT_565: s += "  int b16 = (c.r >> 3) | ((c.g >> 2) << 5) | ((c.b >> 3) << 11);\n"; break;
         case GE_FORMAT_5551:
@@ -349,7 +350,7 @@ bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& o
         return true;
     }
     // Everything arrives in drawing coordinates from the CPU transform; GL only rasterises.
-    // Colours, Z and fog are linear in screen space (ref §8.1): noperspective. Texture
+    // Colours, Z and fog are linear in screen space (ge-rules.md §8.1): noperspective. Texture
     // coordinates arrive pre-multiplied by 1/w and are divided per pixel in the fragment shader.
     const char* colorInterp = key.flatShade ? "flat" : "noperspective";
     s += "layout(location = 0) in vec3 a_pos;\n"
@@ -410,8 +411,8 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     else
         s += "layout(location = 0) out uvec4 o_color;\n";
     // u_pixScale: render scale N of the hardware mode. gl_FragCoord counts the target's texels;
-    // the dither matrix is indexed by the PSP pixel (ref §8.4 step 8) and the level of detail is
-    // per PSP pixel (ref §6.6), so both divide by N.
+    // the dither matrix is indexed by the PSP pixel (ge-rules.md §8.4 step 9) and the level of detail is
+    // per PSP pixel (ge-rules.md §6.6), so both divide by N.
     s += "uniform int u_dither[16];\n"
          "uniform int u_pixScale;\n"
          "uniform ivec4 u_keep;\n"
@@ -419,7 +420,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     if (k.dstRead == DstRead::Texture) s += "uniform usampler2D u_dstColor;\n";
     if (k.depthRead == DepthRead::Texture) s += "uniform sampler2D u_dstDepth;\n";
 
-    // ---- texture sampling (ref §8.10, §6.6) ----
+    // ---- texture sampling (ge-rules.md §8.10, §6.6) ----
     if (k.tex) {
         s += "uniform usampler2D u_tex;\n"
              "uniform ivec4 u_texLevels[8];\n"
@@ -434,7 +435,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
             // texelClampMax, texelWrapMask).
             s += "ivec4 texel(int lv, int u, int v) {\n"
                  "  ivec4 L = u_texLevels[lv];\n";
-            // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ref §8.10).
+            // Clamp: 0 … min(w, 512) − 1; repeat: & (w − 1) & 511 (ge-rules.md §8.10).
             s += k.texClampU ? "  u = clamp(u, 0, min(L.y, 512) - 1);\n" : "  u = u & (L.y - 1) & 511;\n";
             s += k.texClampV ? "  v = clamp(v, 0, min(L.z, 512) - 1);\n" : "  v = v & (L.z - 1) & 511;\n";
             s += "  return ivec4(texelFetch(u_tex, ivec2(u, L.x + v), 0));\n"
@@ -443,7 +444,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
             emitTargetTexel(s, k);
         }
         // Texel coordinates with 8 fraction bits; nearest takes the integer part, linear moves
-        // the sample point half a texel and keeps a 4-bit fraction (ref §8.10). The scale is the
+        // the sample point half a texel and keeps a 4-bit fraction (ge-rules.md §8.10). The scale is the
         // unclamped 2^n of u_texLevels.yz (geometry/texture_size.h: a PSP reads texel 2 at pixel
         // 0 of a 1024-wide texture over 256 pixels).
         // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
@@ -476,7 +477,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
              "}\n";
         s += "ivec4 sampleTexture() {\n";
         s += exact ? "  vec2 st = g_st;\n" : "  vec2 st = v_tex.xy / v_tex.z;\n";
-        // Level of detail in 1/16 steps (ref §6.6).
+        // Level of detail in 1/16 steps (ge-rules.md §6.6).
         if (exact && k.texLodMode == 0 && (k.texMip || k.texMinLinear != k.texMagLinear)) {
             // sampler.cpp levelOfDetail16, mode 0.
             s += "  float x16 = g_lod * 16.0;\n"
@@ -532,7 +533,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         s += "uniform ivec3 u_fogColor;\n";  // fogFactor() in the exact helpers
     else if (k.fog)
         s += "uniform ivec3 u_fogColor;\n"
-             // f becomes 8-bit: 0 at or below 0, 255 at or above 1, else floor(f·256) (ref §8.9).
+             // f becomes 8-bit: 0 at or below 0, 255 at or above 1, else floor(f·256) (ge-rules.md §8.9).
              "int fogFactor() {\n"
              "  if (!(v_fog > 0.0)) return 0;\n"
              "  if (v_fog >= 1.0) return 255;\n"
@@ -570,7 +571,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     }
     s += "}\n";
     if (k.stencilTest && k.fbFormat != 0) {
-        // Stencil operations per frame-buffer format (ref §8.7). s is the 8-bit stored value.
+        // Stencil operations per frame-buffer format (ge-rules.md §8.7). s is the 8-bit stored value.
         s += "int stencilOp(int op, int s) {\n"
              "  if (op == 1) return 0;\n"
              "  if (op == 2) return u_stencil.x;\n"
@@ -602,10 +603,10 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     s += "  float zOut = float(z) * (1.0 / 65536.0);\n";
     if (k.tex) s += "  ivec4 t = sampleTexture();\n";  // before any discard: derivatives
     if (k.depthRange)
-        s += "  if (z < u_zRange.x || z > u_zRange.y) discard;\n";  // ref §8.4 step 2
+        s += "  if (z < u_zRange.x || z > u_zRange.y) discard;\n";  // ge-rules.md §8.4 step 2
     if (k.dstRead == DstRead::FbFetch) s += "  ivec4 dst = ivec4(o_color);\n";
     if (k.dstRead == DstRead::Texture) s += "  ivec4 dst = ivec4(texelFetch(u_dstColor, pix, 0));\n";
-    if (dst && k.fbFormat == 0) s += "  dst.a = 0;\n";  // 5650 reads Ad = 0 (ref §8.8)
+    if (dst && k.fbFormat == 0) s += "  dst.a = 0;\n";  // 5650 reads Ad = 0 (ge-rules.md §8.8)
     if (exact)
         s += "  ivec4 prim = interpColor(" + recTexel(tri::kColors) + ".xyz, (" + recTexel(tri::kHeader) + ".x & " +
              std::to_string(tri::kFlagColorVaries) + "u) != 0u);\n";
@@ -621,7 +622,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         else
             s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";
         if (k.tex) {
-            // Texture function, exact forms of ref §8.3.
+            // Texture function, exact forms of ge-rules.md §8.3.
             const bool d = k.texDouble;
             s += "  ivec4 p = prim;\n";
             const char* modA = k.texAlpha ? "((p.a + 1) * t.a) >> 8" : "p.a";
@@ -655,7 +656,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         } else {
             s += "  c = prim;\n";
         }
-        // Secondary colour after the texture function, then clamp (ref §8.4 step 1).
+        // Secondary colour after the texture function, then clamp (ge-rules.md §8.4 step 1).
         s += "  c.rgb = clamp(c.rgb + sec, 0, 255);\n"
              "  c.a = clamp(c.a, 0, 255);\n";
         if (k.alphaTest == 9)
@@ -665,7 +666,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         if (k.fog)
             s += "  {\n"
                  "    int f = fogFactor();\n"
-                 "    c.rgb = (c.rgb * f + u_fogColor * (255 - f) + 255) >> 8;\n"  // ref §8.3
+                 "    c.rgb = (c.rgb * f + u_fogColor * (255 - f) + 255) >> 8;\n"  // ge-rules.md §8.3
                  "  }\n";
         if (k.colorTest) {
             if (k.colorTest - 1 == 0)
@@ -676,7 +677,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         }
     }
 
-    // ---- stencil and (in-shader) depth test, ref §8.4 steps 6–8 ----
+    // ---- stencil and (in-shader) depth test, ge-rules.md §8.4 steps 6–8 ----
     bool stencilWrites = k.stencilTest && k.fbFormat != 0;
     if (k.stencilTest) {
         s += "  int dstS = dst.a;\n"
@@ -689,7 +690,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         } else {
             s += "  float oldDepth = zOut;\n";
         }
-        // Compare order as PPSSPP/JPCSP: (ref & mask) OP (stored & mask) (ref §8.7, §9 #1).
+        // Compare order as PPSSPP/JPCSP: (ref & mask) OP (stored & mask) (ge-rules.md §8.7).
         s += "  bool keepColor = false;\n"
              "  if (!stencilCompare(u_stencil.x & u_stencil.y, dstS & u_stencil.y)) {\n";
         if (stencilWrites) s += "    newS = stencilOp(" + std::to_string(k.sopFail) + ", dstS);\n";
@@ -710,7 +711,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
         if (!stencilWrites) s += "  if (keepColor) discard;\n";
     }
 
-    // ---- blending, dithering, clamp (ref §8.4 step 9, §8.3) ----
+    // ---- blending, dithering, clamp (ge-rules.md §8.4 step 9, §8.3) ----
     s += "  ivec3 rgb = c.rgb;\n";
     if (k.blend) {
         s += "  {\n"
@@ -737,7 +738,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     if (k.dither) s += "  ivec2 psp = pix / max(u_pixScale, 1);\n  rgb += ivec3(u_dither[(psp.y & 3) * 4 + (psp.x & 3)]);\n";
     s += "  rgb = clamp(rgb, 0, 255);\n";
 
-    // ---- alpha byte = stencil (ref §8.4 step 10, §8.7) ----
+    // ---- alpha byte = stencil (ge-rules.md §8.4 step 10, §8.7) ----
     s += "  int a = ";
     if (k.clearMode)
         s += k.clearAlpha ? "c.a" : (dst ? "dst.a" : "0");
@@ -756,7 +757,7 @@ bool generateFragmentShader(const FsKey& k, const HostCaps& caps, std::string& o
     if (k.clearMode && !k.clearColor && dst) s += "  rgb = dst.rgb;\n";
     if (k.stencilTest && stencilWrites) s += "  if (keepColor) rgb = dst.rgb;\n";
 
-    // ---- masks, format truncation, write (ref §8.4 step 12, §8.8) ----
+    // ---- masks, format truncation, write (ge-rules.md §8.4 step 12, §8.8) ----
     s += "  ivec4 bits = formatBits();\n"
          "  ivec4 res = ivec4(rgb, a) & bits;\n";
     if (dst) s += "  res = (res & ~u_keep) | (dst & bits & u_keep);\n";

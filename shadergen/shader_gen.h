@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GLSL generation: pure functions (key, caps) → source (style-anchors §7.6). No GL headers, no
 // state reads. The first line after #version/#extension is a comment holding describe(key).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shader keys: small POD descriptions of one GE pixel/vertex pipeline configuration, and the host
 // capabilities the generated GLSL may use (style-anchors §7.4–7.6).
 //
@@ -57,12 +58,12 @@ static_assert(sizeof(VsKey) == 4);
 
 struct FsKey {
     // ---- colour source ----
-    u8 clearMode = 0;    // CMODE bit 0: vertex colour written as is (ref §8.4)
+    u8 clearMode = 0;    // CMODE bit 0: vertex colour written as is (docs/ge-rules.md §8.4)
     u8 clearColor = 0;   // CEN (clear mode only)
     u8 clearAlpha = 0;   // AEN (clear mode only; never for 5650)
     u8 clearDepth = 0;   // ZEN (clear mode only)
     u8 flatShade = 0;    // must match the VsKey (interpolation qualifiers)
-    // ---- texture (ref §8.3, §8.10, §6.6) ----
+    // ---- texture (ge-rules.md §8.3, §8.10, §6.6) ----
     u8 tex = 0;          // texturing on
     u8 texFunc = 0;      // 0 MODULATE, 1 DECAL, 2 BLEND, 3 REPLACE, 4 ADD (5–7 canonicalised to 4)
     u8 texAlpha = 0;     // TCC
@@ -98,7 +99,7 @@ struct FsKey {
     // 0: the decoded atlas. 1 + GeBufferFormat: u_tex is the colour target of that format at
     // render scale (u_texScale texels per PSP texel), sampled in place; its stored pixels are
     // re-encoded to the frame buffer's 16 bits and decoded as texFormat (a 16-bit buffer read as
-    // another 16-bit format, ge-reference §8.8, §6.3).
+    // another 16-bit format, ge-rules.md §8.8, §6.3).
     u8 texTarget = 0;
     u8 texFormat = 0;   // GeTextureFormat when texTarget: 0–3 (5650, 5551, 4444, 8888), or 6/7
                         // (CLUT16 / CLUT32: the pixel is the index, looked up in u_clutTex)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "softmodel/blend.h"
 
 #include <array>

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // Alpha blending, logic operations, the comparison functions of the alpha/stencil/depth tests and
 // the stencil operations, in the software model's exact integer forms (manual §17.4–§17.10;
-// ge-reference.md §3.10, §8.3, §8.7). Private to softmodel/; inlined into the shading routines.
+// docs/ge-rules.md §3.10, §8.3, §8.7). Private to softmodel/; inlined into the shading routines.
 #pragma once
 #include <algorithm>
 #include <cstdlib>
@@ -11,9 +12,9 @@
 
 namespace ge::soft {
 
-// ---- Comparisons (ATF/STF/DTF codes GeCompareFunc, hle/ge_state.h; ref §3.10) ----
+// ---- Comparisons (ATF/STF/DTF codes GeCompareFunc, hle/ge_state.h; ge-rules.md §3.10) ----
 // "a OP b": alpha test a = fragment alpha, b = reference; depth test a = fragment Z, b = stored Z;
-// stencil test a = reference, b = stored value (PPSSPP/OpenGL operand order, ref §8.7 conflict).
+// stencil test a = reference, b = stored value (PPSSPP/OpenGL operand order, ge-rules.md §8.7 conflict).
 inline bool compare(u32 func, int a, int b) {
     switch (func & 7) {
     case CMP_NEVER: return false;
@@ -27,7 +28,7 @@ inline bool compare(u32 func, int a, int b) {
     }
 }
 
-// ---- Stencil operations (CMD_SOP codes GeStencilOp; per-format behaviour of ref §8.7) ----
+// ---- Stencil operations (CMD_SOP codes GeStencilOp; per-format behaviour of ge-rules.md §8.7) ----
 // New 8-bit stencil value from the stored one `s` (already expanded to 8 bits by the format's
 // read rule). REPLACE writes the whole reference, unmasked; codes 6–7 act as KEEP. The result is
 // later truncated to the format's stencil bits by the normal alpha conversion.
@@ -49,7 +50,7 @@ inline int stencilOp(u32 op, GeBufferFormat fmt, int s, int ref) {
     }
 }
 
-// ---- Blending (equations GeBlendEq; ref §3.10 factor table, §8.3 arithmetic) ----
+// ---- Blending (equations GeBlendEq; ge-rules.md §3.10 factor table, §8.3 arithmetic) ----
 struct BlendParams {
     u8 eq = 0, a = 0, b = 0;
     int fixA[3] = {}, fixB[3] = {};
@@ -64,7 +65,7 @@ inline BlendFactorKind blendFactorKind(u32 code) {
     return code == 0 ? BFK_COLOR : code == 1 ? BFK_INVCOLOR : code <= 9 ? BFK_ALPHA : BFK_FIX;
 }
 
-// Codes 2–9 (ref §3.10): doubled alphas may reach 510; "255 − 2·A" stops at 0.
+// Codes 2–9 (ge-rules.md §3.10): doubled alphas may reach 510; "255 − 2·A" stops at 0.
 inline int alphaBlendFactor(u32 code, int as, int ad) {
     switch (code) {
     case 2: return as;
@@ -78,7 +79,7 @@ inline int alphaBlendFactor(u32 code, int as, int ad) {
     }
 }
 
-// ((2·C + 1)·(2·F + 1)) >> 10: the GE's X⊙Y (§8.3).
+// ((2·C + 1)·(2·F + 1)) >> 10: the GE's X⊙Y (ge-rules.md §8.3).
 inline int blendTerm(int c, int f) { return ((2 * c + 1) * (2 * f + 1)) >> 10; }
 
 struct Factor3 {
@@ -131,7 +132,7 @@ using BlendFn = void (*)(const BlendParams&, Rgba& src, const Rgba& dst);
 BlendFn pickBlend(const BlendParams& p);
 inline void blendColor(const BlendParams& p, Rgba& src, const Rgba& dst) { pickBlend(p)(p, src, dst); }
 
-// ---- Logic operations (CMD_LOP, RGB only; ref §3.10). s = fragment, d = frame buffer, both as
+// ---- Logic operations (CMD_LOP, RGB only; ge-rules.md §3.10). s = fragment, d = frame buffer, both as
 // packed 24-bit RGB. On 16-bit formats operating on the bit-replicated 8-bit channels and then
 // truncating equals operating on the stored bits, since every op is bitwise.
 inline u32 logicOp(u32 op, u32 s, u32 d) {

@@ -1,8 +1,9 @@
+// SPDX-License-Identifier: MIT
 // Inline frame-buffer pixel access for the software model's hot loop (private to softmodel/).
 //
-// The layouts are those of hle/pixel_format.h (ge-reference.md §6.1): 5650 R 4..0 G 10..5 B 15..11;
+// The layouts are those of hle/pixel_format.h (docs/ge-rules.md §6.1): 5650 R 4..0 G 10..5 B 15..11;
 // 5551 R 4..0 G 9..5 B 14..10 A 15; 4444 R 3..0 G 7..4 B 11..8 A 15..12; 8888 bytes R G B A.
-// Reads expand by bit replication, writes truncate (ref §8.8). These are templates so the shading
+// Reads expand by bit replication, writes truncate (ge-rules.md §8.8). These are templates so the shading
 // routine, specialised per frame-buffer format, inlines them; tests/soft_blend.cpp checks them
 // against ge::decodePixel16/encodePixel16 for every 16-bit value so the two never drift apart.
 #pragma once
@@ -26,9 +27,9 @@ struct Fb<GE_FORMAT_565> {
     static void store(u8* p, u32 v) { writeLE16(p, u16(v)); }
     static Rgba decode(u32 v) {
         int r = v & 31, g = (v >> 5) & 63, b = (v >> 11) & 31;
-        return {r << 3 | r >> 2, g << 2 | g >> 4, b << 3 | b >> 2, 0};  // Ad = 0 for 5650 (§8.8)
+        return {r << 3 | r >> 2, g << 2 | g >> 4, b << 3 | b >> 2, 0};  // Ad = 0 for 5650 (ge-rules.md §8.8)
     }
-    static int stencil(u32) { return 0; }  // §8.7: always 0
+    static int stencil(u32) { return 0; }  // ge-rules.md §8.7: always 0
     static u32 encode(int r, int g, int b, int) { return u32(r >> 3) | u32(g >> 2) << 5 | u32(b >> 3) << 11; }
 };
 

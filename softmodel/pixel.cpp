@@ -1,10 +1,11 @@
-// The software model's per-pixel pipeline (manual §13–§19; ge-reference.md §8.3, §8.4, §8.7–§8.10).
+// SPDX-License-Identifier: MIT
+// The software model's per-pixel pipeline (manual §13–§19; docs/ge-rules.md §8.3, §8.4, §8.7–§8.10).
 //
 // buildPixelState resolves the GE state of one draw into PixelState::Impl (decoded textures,
 // masked references, masks converted to the frame-buffer format, …) and picks a shading routine
 // specialised on the frame-buffer format and the hot switches (texturing, blending, depth test,
 // and whether any of the rarer per-pixel stages is on), so shadeFragments runs integer code with
-// no per-pixel decisions about which stages exist. Stage order is ref §8.4 exactly.
+// no per-pixel decisions about which stages exist. Stage order is ge-rules.md §8.4 exactly.
 #include <algorithm>
 #include <array>
 #include <utility>
@@ -21,13 +22,13 @@ using ShadeFn = Impl::ShadeFn;
 
 inline u32 packRgb(int r, int g, int b) { return u32(r) | u32(g) << 8 | u32(b) << 16; }
 
-// A stencil-only write (stencil test or depth test failed, §8.4 steps 6–7): the new stencil value
+// A stencil-only write (stencil test or depth test failed, ge-rules.md §8.4 steps 6–7): the new stencil value
 // lands in the alpha bits that PMSK2 leaves writable; colour is untouched.
 template <GeBufferFormat F>
 inline void writeStencilOnly(const Impl& im, u8* p, u32 old, int stencil) {
     using FB = Fb<F>;
     if constexpr (FB::kAlphaBits == 0) {
-        return;  // 5650 has no stencil (§8.7)
+        return;  // 5650 has no stencil (ge-rules.md §8.7)
     } else {
         const u32 v = FB::encode(0, 0, 0, stencil);
         FB::store(p, (old & ~im.stencilWriteBits) | (v & im.stencilWriteBits));
@@ -115,7 +116,7 @@ void shadeNormal(const PixelState& ps, const Impl& im, const geo::Fragment* frag
     }
 }
 
-// Clear mode (§8.4 last paragraph): depth range (outside through mode), dither, PMSK; colour,
+// Clear mode (ge-rules.md §8.4 last paragraph): depth range (outside through mode), dither, PMSK; colour,
 // alpha (= stencil, the vertex alpha) and depth written as CEN/AEN/ZEN say (keepMask holds the
 // CEN/AEN part).
 template <GeBufferFormat F, bool ZEN>
@@ -232,18 +233,18 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->clearAlpha = st.CMODE_alpha();
     im->clearDepth = st.CMODE_depth();
 
-    // Texturing: never in clear mode (§19.6).
+    // Texturing: never in clear mode (manual §19.6).
     im->texture = textureEnabled && !clear;
     if (im->texture) setupTexture(*im, st, mem, cache);
 
-    // Fog: off in through and clear mode (ref §3.9, §8.4).
+    // Fog: off in through and clear mode (ge-rules.md §3.9, §8.4).
     im->fog = st.FGE_on() && !im->through && !clear;
     const u32 fc = st.FC_rgb();
     im->fogColor[0] = int(fc & 255);
     im->fogColor[1] = int((fc >> 8) & 255);
     im->fogColor[2] = int((fc >> 16) & 255);
 
-    // Depth range: skipped in through mode, applied even in clear mode (§8.4 step 2).
+    // Depth range: skipped in through mode, applied even in clear mode (ge-rules.md §8.4 step 2).
     im->minZ = int(st.MINZ_value());
     im->maxZ = int(st.MAXZ_value());
     im->depthRange = !im->through && (im->minZ > 0 || im->maxZ < 65535);
@@ -286,7 +287,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->depthWrite = im->depthTest && !st.ZMSK_nowrite();
     im->usesDepthBuffer = clear ? im->clearDepth : im->depthTest;
 
-    // Blending (equations 6–7: no blending, ref §3.10).
+    // Blending (equations 6–7: no blending, ge-rules.md §3.10).
     im->blend = st.ABE_on() && !clear && st.BLEND_eq() <= BLEQ_ABS;
     im->blendParams.eq = u8(st.BLEND_eq());
     im->blendParams.a = u8(st.BLEND_a());
@@ -307,7 +308,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->logicOp = u8(st.LOP_op());
     im->logicOpOn = st.LOE_on() && !clear && im->logicOp != 3;
 
-    // Write masks in the frame-buffer format (§8.7, §8.8): PMSK converted by truncation.
+    // Write masks in the frame-buffer format (ge-rules.md §8.7, §8.8): PMSK converted by truncation.
     const u32 pm1 = st.PMSK1_rgb();
     const u32 pmask = fbEncode(fmt, int(pm1 & 255), int((pm1 >> 8) & 255), int((pm1 >> 16) & 255), int(st.PMSK2_alpha()));
     const u32 alphaBits = fbAlphaBits(fmt), rgbBits = fbRgbBits(fmt);
@@ -316,7 +317,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
         if (!im->clearColor) keep |= rgbBits;
         if (!im->clearAlpha) keep |= alphaBits;
     } else if (!im->stencilTest) {
-        keep |= alphaBits;  // no stencil test: alpha/stencil bits never change (§8.7)
+        keep |= alphaBits;  // no stencil test: alpha/stencil bits never change (ge-rules.md §8.7)
     }
     im->keepMask = keep;
     im->stencilWriteBits = alphaBits & ~pmask;

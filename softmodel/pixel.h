@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The contract between the rasteriser the software model draws with (raster side:
 // geometry/raster*, transform*, clip*) and its per-pixel stages (pixel side: softmodel/pixel*,
 // sampler*).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // PixelState::Impl: everything the per-pixel pipeline needs, resolved once per draw by
 // buildPixelState (softmodel/pixel.cpp) and read-only while shading. Private to softmodel/.
 #pragma once
@@ -24,18 +25,18 @@ struct PixelState::Impl {
     bool clearMode = false, through = false;
     bool clearColor = false, clearAlpha = false, clearDepth = false;  // CMODE CEN/AEN/ZEN
 
-    // Texturing (manual §13; ref §8.3, §8.10).
+    // Texturing (manual §13; docs/ge-rules.md §8.3, §8.10).
     bool texture = false;
     Sampler sampler;
     std::shared_ptr<const DecodedLevel> levelData[8];  // keeps the decoded levels alive
     TextureFunctionFn texFunc = nullptr;
     int texEnv[3] = {};
 
-    // Fog (§8.3, §8.9).
+    // Fog (ge-rules.md §8.3, §8.9).
     bool fog = false;
     int fogColor[3] = {};
 
-    // Tests (§8.4 steps 2–7).
+    // Tests (ge-rules.md §8.4 steps 2–7).
     bool depthRange = false;
     int minZ = 0, maxZ = 65535;
     bool alphaTest = false;
@@ -52,7 +53,7 @@ struct PixelState::Impl {
     u8 depthFunc = 0;
     bool depthWrite = false;
 
-    // Blending, dithering, logic op (§8.4 steps 9–11).
+    // Blending, dithering, logic op (ge-rules.md §8.4 steps 9–11).
     bool blend = false;
     BlendParams blendParams;
     BlendFn blendFn = nullptr;  // pickBlend(blendParams)
@@ -60,7 +61,7 @@ struct PixelState::Impl {
     bool logicOpOn = false;
     u8 logicOp = 3;
 
-    // Write masks in the frame-buffer format (§8.4 step 12, §8.7, §8.8): a 1 bit keeps the stored
+    // Write masks in the frame-buffer format (ge-rules.md §8.4 step 12, §8.7, §8.8): a 1 bit keeps the stored
     // bit. keepMask applies to full pixel writes (PMSK1/PMSK2, plus the alpha/stencil bits when no
     // stencil value is written, plus RGB in clear mode without CEN); stencilWriteBits is the set of
     // bits a stencil-only write (failed stencil/depth test) may change: alpha bits & ~PMSK2.

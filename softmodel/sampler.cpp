@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "softmodel/sampler.h"
 
 #include <algorithm>
@@ -17,7 +18,7 @@ void TexLevel::setSize(u32 wlog, u32 hlog, int sw, int sh) {
     // reference's (s·w)·256 bit for bit.
     scaleU = float(geo::texCoordSize(wlog)) * 256.0f;
     scaleV = float(geo::texCoordSize(hlog)) * 256.0f;
-    // Ref §8.10: repeat u & (w − 1) & 511; clamp 0 … min(w, 512) − 1. The stored size bound only
+    // docs/ge-rules.md §8.10: repeat u & (w − 1) & 511; clamp 0 … min(w, 512) − 1. The stored size bound only
     // matters if a decoder ever returned fewer texels than the nominal size.
     wrapMaskU = geo::texelWrapMask(wlog);
     wrapMaskV = geo::texelWrapMask(hlog);
@@ -48,7 +49,7 @@ int levelOfDetail16(const LodParams& p, float lod, float w) {
         break;
     }
     case 2:
-        // Ref §6.6: d = log2(TSLOPE·W) + 1, the +1 measured; formed as log2(2·TSLOPE·W).
+        // ge-rules.md §6.6: d = log2(TSLOPE·W) + 1, the +1 measured; formed as log2(2·TSLOPE·W).
         d = texLog2x16(2.0f * w * p.slope);
         break;
     default: d = 0; break;  // constant mode (1, and 3 which behaves as 1)

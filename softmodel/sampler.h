@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // Texture sampling for the software model: level-of-detail selection, nearest and bilinear
-// filtering, repeat/clamp, mipmap blending (manual §13.10–§13.12; ge-reference.md §6.6, §8.10).
+// filtering, repeat/clamp, mipmap blending (manual §13.10–§13.12; docs/ge-rules.md §6.6, §8.10).
 //
 // Levels are sampled from textures already decoded to RGBA8888 (R in bits 7..0, CLUT applied) by
 // the texture cache; sampling itself is integer except the first multiply of the coordinate.
@@ -17,7 +18,7 @@ namespace ge::soft {
 struct TexLevel {
     const u32* texels = nullptr;  // storedW × storedH texels, row-major; null → samples read 0
     int storedW = 1, storedH = 1;
-    // Coordinate scale: the level's nominal size 1 << TSIZE (up to 2^15, ref §6.2) times 256,
+    // Coordinate scale: the level's nominal size 1 << TSIZE (up to 2^15, ge-rules.md §6.2) times 256,
     // so s·scale is the texel position with 8 fraction bits.
     float scaleU = 256, scaleV = 256;
     int wrapMaskU = 0, wrapMaskV = 0;  // (w − 1) & 511, further limited to the stored size
@@ -34,7 +35,7 @@ struct LevelChoice {
     bool linear = false;
 };
 
-// Level-of-detail parameters (ref §6.6).
+// Level-of-detail parameters (ge-rules.md §6.6).
 struct LodParams {
     int mode = 1;            // CMD_TLEVEL mode: 0 auto, 1 constant, 2 slope (3 → 1)
     int bias16 = 0;          // OFFL, signed with 4 fraction bits
@@ -54,12 +55,12 @@ int texLog2x16(float x);
 // Fragment::w (mode 2): d = texLog2x16(2·TSLOPE·W).
 int levelOfDetail16(const LodParams& p, float lod, float w);
 
-// Which level(s) and which filter a detail value selects (ref §6.6): the minification filter when
+// Which level(s) and which filter a detail value selects (ge-rules.md §6.6): the minification filter when
 // d > 0, else magnification; with mipmaps (maxLevel > 0) and d > 0, level = floor(min(d, MXL) + 0.5)
 // or, mipmap-linear, floor(min(d, MXL)) plus a 4-bit fraction towards the next level.
 LevelChoice chooseLevel(const LodParams& p, int detail16);
 
-// Single-level filters (ref §8.10). Nearest: u = trunc(s·w·256) >> 8. Bilinear: the sample point
+// Single-level filters (ge-rules.md §8.10). Nearest: u = trunc(s·w·256) >> 8. Bilinear: the sample point
 // moves half a texel back, u0 = (round(s·w·256) − 128) >> 8 with the 4-bit fraction of the same
 // value (s·w·256 rounded to nearest-even, as the reference renderer's x86 sampler converts it);
 // the four texels are wrapped/clamped separately and weighted (16 − fu)(16 − fv), … >> 8.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The software model's Renderer: primitive assembly, batching and band threads (see soft_renderer.h).
 #include "softmodel/soft_renderer.h"
 
@@ -40,7 +41,7 @@ struct DrawItem {
     u32 firstPrim = 0, primEnd = 0;
 };
 
-// VRAM byte range [begin, end) as linear offsets from 0x04000000 (all mirrors alias, §7.3).
+// VRAM byte range [begin, end) as linear offsets from 0x04000000 (all mirrors alias, docs/ge-rules.md §7.3).
 struct VramRange {
     u32 begin = 0, end = 0;
 };
@@ -120,7 +121,7 @@ void rasterBatch(const Batch& b, const geo::Band& band, std::vector<geo::Fragmen
     sink.flush();
 }
 
-// Bits per texel of each CMD_TPF format (for the bytes a texture level spans, §6.1).
+// Bits per texel of each CMD_TPF format (for the bytes a texture level spans, ge-rules.md §6.1).
 u32 texelBits(u32 fmt) {
     static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 32, 32, 32, 32, 32};
     return bits[fmt & 15];
@@ -136,7 +137,7 @@ VramRange vramRange(u32 addr, u64 bytes) {
 
 geo::RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
     geo::RasterParams rp;
-    // Scissor ∩ REGION2 (§8.6; REGION1 is kept 0 by games).
+    // Scissor ∩ REGION2 (ge-rules.md §8.6; REGION1 is kept 0 by games).
     rp.clipX1 = int(st.SCISSOR1_x());
     rp.clipY1 = int(st.SCISSOR1_y());
     rp.clipX2 = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
@@ -335,7 +336,7 @@ struct SoftRenderer::Impl {
     // Queues the primitives assembled in `scratch` as one draw with the given state.
     void queueDraw(const GeState& st, const geo::RasterParams& rp, bool textured, bool forceRebuild) {
         if (scratchPrims.empty()) return;
-        // Render to texture: the texture must see every earlier draw's pixels (§8.13).
+        // Render to texture: the texture must see every earlier draw's pixels (ge-rules.md §8.13).
         if (rp.textured && textureHazard(st)) waitIdle();
         const bool through = st.isThrough();
         constexpr u32 kPixelDirty = DIRTY_TEXTURE | DIRTY_CLUT | DIRTY_FRAGMENT | DIRTY_BLEND | DIRTY_DEPTHSTENCIL |
@@ -401,7 +402,7 @@ struct SoftRenderer::Impl {
         scratchPrims.push_back(p);
     }
 
-    // Back-face culling (§3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
+    // Back-face culling (ge-rules.md §3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
     // clockwise ones. Zero-area triangles are never culled: the rasteriser draws the samples they
     // pass through as the reference does (raster.cpp rasterZeroAreaTriangle).
     bool culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c) const {
@@ -410,7 +411,7 @@ struct SoftRenderer::Impl {
         return cullClockwise ? area > 0 : area < 0;
     }
 
-    // A triangle in primitive order; the third vertex is the provoking one (§8.1).
+    // A triangle in primitive order; the third vertex is the provoking one (ge-rules.md §8.1).
     // `ring`, when given, is the order the vertices are handed to the rasteriser in (see assemble);
     // (ia, ib, ic) is the winding order used for culling and clipping.
     void triangle(u32 ia, u32 ib, u32 ic, const u32* ring = nullptr) {
@@ -423,12 +424,12 @@ struct SoftRenderer::Impl {
             return;
         }
         if (!ts->through) {
-            if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) {  // §8.5
+            if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) {  // ge-rules.md §8.5
                 ++stats.discarded;
                 return;
             }
             // Near clipping whatever CLE says: CLE selects only the depth clamp and the discard
-            // rule (ge-reference §8.5, corrected; PPSSPP Clipper::ProcessTriangle).
+            // rule (ge-rules.md §8.5; PPSSPP Clipper::ProcessTriangle).
             if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
                 // Clipped in the reference's vertex order (the strip/fan ring, clip.h).
                 const bool reversed = ring && geo::ringReversed(ring, ia, ib);
@@ -472,7 +473,7 @@ struct SoftRenderer::Impl {
             ++stats.discarded;
             return;
         }
-        if (!ts->through && (geo::beyondNear(*v[0]) || geo::beyondNear(*v[1]))) {  // whatever CLE says (§8.5)
+        if (!ts->through && (geo::beyondNear(*v[0]) || geo::beyondNear(*v[1]))) {  // whatever CLE says (ge-rules.md §8.5)
             geo::ClipVertex a = *v[0], b = *v[1];
             ++stats.clipped;
             if (!geo::clipLineNear(*ts, a, b)) return;
@@ -508,7 +509,7 @@ struct SoftRenderer::Impl {
         addPrim(geo::PrimKind::Rect, i0, i1, i1, i1);
     }
 
-    // Rectangles with texture projection are drawn as two triangles (§8.2), corners textured by
+    // Rectangles with texture projection are drawn as two triangles (ge-rules.md §8.2), corners textured by
     // the orientation table, colour/Z/fog of the second vertex.
     void rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
         if (v0.x == v1.x || v0.y == v1.y) return;
@@ -530,7 +531,7 @@ struct SoftRenderer::Impl {
     }
 
     // Assembles `seq` (indices into cverts, in draw order) as `prim` (assembly.h); what does not
-    // complete a primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (§3.2,
+    // complete a primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (ge-rules.md §3.2,
     // §8.11).
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
         geo::assemblePrimitives(prim, seq, rectDetect.allowed && !cullOn, stripOdd, *this, keepScratch);
@@ -565,7 +566,7 @@ struct SoftRenderer::Impl {
             anyBad |= !ok;
             if (ok && skin) applySkinning(st, vtype, dv);
             geo::transformVertex(t, dv, out);
-            out.valid = ok && reader.hasPosition();  // no position: dropped (§8.11)
+            out.valid = ok && reader.hasPosition();  // no position: dropped (ge-rules.md §8.11)
         };
         u32 lo = ~0u, hi = 0;
         for (u32 i : indices) lo = std::min(lo, i), hi = std::max(hi, i);
@@ -689,7 +690,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     }
     if (tess.verts.empty()) return;
     VertexReader probe(I.mem, st, p.vtype);
-    // The tessellator generates normals when lighting needs them (§3.2).
+    // The tessellator generates normals when lighting needs them (ge-rules.md §3.2).
     const bool hasNormal = probe.hasNormal() || st.LTE_on();
     const geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
     I.cverts.resize(tess.verts.size());
@@ -706,7 +707,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     const bool textured = st.TME_on();
     const geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
     I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    // Patch culling (CMD_PCE, §11.2) removes patches outside the drawing region; the clip
+    // Patch culling (CMD_PCE, manual §11.2) removes patches outside the drawing region; the clip
     // rectangle already includes REGION2, so those pixels are never drawn either way.
     const bool odd = I.stripOdd;
     I.assemble(tess.prim, seq, false);
@@ -720,7 +721,7 @@ void SoftRenderer::drawImmediate(const ImmPacket& p) {
     ++I.stats.immediates;
     if (p.vertices.empty()) return;
     // The AP2 flags of the first vertex override shading, culling, texturing, fog, dither and
-    // antialiasing for this primitive (ge-reference §3.12): draw with a state copy that has them.
+    // antialiasing for this primitive (ge-rules.md §3.12): draw with a state copy that has them.
     GeState st = *p.state;
     auto setFlag = [&](GeCmd op, bool on) { st.regs[op] = (u32(op) << 24) | (on ? 1u : 0u); };
     const u32 f = p.flags;

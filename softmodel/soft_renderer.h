@@ -1,4 +1,5 @@
-// The software model's Renderer: ge2gl's bit-accurate CPU GE (manual §3–§11; ge-reference.md §8).
+// SPDX-License-Identifier: MIT
+// The software model's Renderer: ge2gl's bit-accurate CPU GE (manual §3–§11; docs/ge-rules.md §8).
 //
 // Per draw, on the caller's thread: vertices are decoded once (hle/vertex_decoder.h; patches via
 // geometry/spline.h), transformed, lit and clipped (geometry/transform.h, lighting.h, clip.h, the
@@ -28,7 +29,7 @@ struct SoftStats {
     u64 vertices = 0;        // vertices transformed
     u64 primitives = 0;      // primitives queued for rasterisation
     u64 culled = 0;          // back-face culled triangles
-    u64 discarded = 0;       // dropped by the §8.5 rules (range, depth, w < 0) or bad vertices
+    u64 discarded = 0;       // dropped by the ge-rules.md §8.5 rules (range, depth, w < 0) or bad vertices
     u64 clipped = 0;         // primitives cut at the near plane
     u64 batches = 0;
     u64 badDraws = 0;        // draws whose vertex or index data was not valid memory

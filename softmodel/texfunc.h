@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: MIT
 // Texture functions, colour doubling, colour addition and fog: the software model's exact integer
-// forms (manual §13.13, §14, §15, §16; ge-reference.md §8.3, §8.13). Private to softmodel/.
+// forms (manual §13.13, §14, §15, §16; docs/ge-rules.md §8.3, §8.13). Private to softmodel/.
 //
 // Every value is an integer 0–255 on input; ">> n" is a floor shift. The texture function may
 // produce values above 255 (ADD, doubling); the caller clamps after adding the secondary colour
-// (§8.4 step 1), which gives the same result as clamping twice since nothing here is negative.
+// (ge-rules.md §8.4 step 1), which gives the same result as clamping twice since nothing here is negative.
 #pragma once
 #include <algorithm>
 
@@ -24,9 +25,9 @@ inline int texA(u32 t) { return int(t >> 24); }
 template <int FUNC, bool RGBA, bool DBL>
 inline void textureFunction(Rgba& c, u32 texel, const int env[3]) {
     const int tr = texR(texel), tg = texG(texel), tb = texB(texel), ta = texA(texel);
-    // §8.3: "alpha as MODULATE" for BLEND and ADD; MODULATE alpha itself with TCC = 1.
+    // ge-rules.md §8.3: "alpha as MODULATE" for BLEND and ADD; MODULATE alpha itself with TCC = 1.
     const int modA = RGBA ? ((c.a + 1) * ta) >> 8 : c.a;
-    constexpr int mul = DBL ? 2 : 1;       // REPLACE/ADD/DECAL(TCC=0): ×2 (§8.3 doubling row)
+    constexpr int mul = DBL ? 2 : 1;       // REPLACE/ADD/DECAL(TCC=0): ×2 (ge-rules.md §8.3 doubling row)
     constexpr int shift = DBL ? 7 : 8;     // DECAL/BLEND keep a bit of precision when doubling
     if constexpr (FUNC == TFUNC_MODULATE) {
         // (P + 1)·T >> 8; doubled: ((P + 1)·T·2) >> 8.
@@ -57,7 +58,7 @@ inline void textureFunction(Rgba& c, u32 texel, const int env[3]) {
         c.g = tg * mul;
         c.b = tb * mul;
         if constexpr (RGBA) c.a = ta;
-    } else {  // ADD (and the undefined codes 5–7, which behave as ADD, ref §3.8)
+    } else {  // ADD (and the undefined codes 5–7, which behave as ADD, ge-rules.md §3.8)
         c.r = (c.r + tr) * mul;
         c.g = (c.g + tg) * mul;
         c.b = (c.b + tb) * mul;
@@ -82,7 +83,7 @@ inline TextureFunctionFn pickTextureFunction(u32 func, bool rgba, bool dbl) {
 #undef GE2GL_TF
 }
 
-// §8.4 step 1 / §15: Cv + Cs, clamped to 0–255 (doubling never touches Cs, §8.13).
+// ge-rules.md §8.4 step 1, manual §15: Cv + Cs, clamped to 0–255 (doubling never touches Cs, ge-rules.md §8.13).
 inline void addSecondaryAndClamp(Rgba& c, const u8 sec[3]) {
     c.r = std::min(c.r + sec[0], 255);
     c.g = std::min(c.g + sec[1], 255);
@@ -90,7 +91,7 @@ inline void addSecondaryAndClamp(Rgba& c, const u8 sec[3]) {
     c.a = std::min(c.a, 255);
 }
 
-// §8.3 fog: (C·f + FC·(255 − f) + 255) >> 8 with the 8-bit fog factor f (255 = no fog).
+// ge-rules.md §8.3 fog: (C·f + FC·(255 − f) + 255) >> 8 with the 8-bit fog factor f (255 = no fog).
 inline int fogChannel(int c, int fc, int f) { return (c * f + fc * (255 - f) + 255) >> 8; }
 inline void applyFog(Rgba& c, const int fogColor[3], int f) {
     c.r = fogChannel(c.r, fogColor[0], f);

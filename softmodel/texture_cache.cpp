@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "softmodel/texture_cache.h"
 
 #include <algorithm>
@@ -40,7 +41,7 @@ std::shared_ptr<const DecodedLevel> TextureCache::level(const GeState& st, const
     key.swizzle = st.TMODE_swizzle() ? 1 : 0;
     if (isClut) {
         key.clut = st.op(GE_CMD_CLUT);
-        // Multi-CLUT (ref §6.4) makes the palette window depend on the level.
+        // Multi-CLUT (docs/ge-rules.md §6.4) makes the palette window depend on the level.
         if (st.TMODE_multiclut()) key.level = u8(lvl);
     }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decoded-texture cache of the software model (the TextureCache of softmodel/pixel.h).
 //
 // Each texture level is decoded to RGBA8888 once (hle/texture_decoder.h) and reused by later

@@ -1,4 +1,5 @@
-// Save states on real game frames (issue 14): five shared frametests replayed through the C ABI
+// SPDX-License-Identifier: MIT
+// Save states on real game frames: five shared frametests replayed through the C ABI
 // with a save/load onto the other backend every 100 commands (tests/savestate_switch.h) finish
 // with the uninterrupted software frame, pixel for pixel. Whole-frametest runs: label
 // "accuracy", left out of the sanitizer pass (the project's scenes run there, api_savestate.cpp).

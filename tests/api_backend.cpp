@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The plugin API with real drawing (software backend), with the worker thread, and the public
 // headers' build hygiene.
 #include <gtest/gtest.h>
@@ -53,7 +54,7 @@ TEST(ApiSoft, DrawsIntoHostVramAndReadsTheFrameBack) {
     std::vector<uint8_t> rgba(480 * 272 * 4);
     ASSERT_EQ(ge2gl_read_frame(host.h, 0x04000000, 512, GE2GL_FORMAT_8888, 480, 272, rgba.data(), rgba.size()), GE2GL_OK);
     auto px = [&](int x, int y) { return &rgba[(size_t(y) * 480 + x) * 4]; };
-    // Clear colour ABGR 0xFF202080: R 0x80, G 0x20, B 0x20; alpha = stencil 0 (§8.4).
+    // Clear colour ABGR 0xFF202080: R 0x80, G 0x20, B 0x20; alpha = stencil 0 (docs/ge-rules.md §8.4).
     EXPECT_EQ(px(0, 0)[0], 0x80);
     EXPECT_EQ(px(0, 0)[1], 0x20);
     EXPECT_EQ(px(0, 0)[2], 0x20);

@@ -1,4 +1,5 @@
-// The GE debugger through the C ABI (issue 14; include/ge2gl/ge2gl.h "Debugger",
+// SPDX-License-Identifier: MIT
+// The GE debugger through the C ABI (include/ge2gl/ge2gl.h "Debugger",
 // docs/debugger.md): stepping draw by draw through the five scenes (replayed the way an emulator
 // drives the GE) reaches FINISH with the uninterrupted picture on both backends, every stop is
 // before a draw whose vertices can be read; breakpoints on opcodes, addresses, lists and frames

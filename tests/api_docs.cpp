@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // docs/plugin-api.md's C examples compile as written: every ```c block is a translation unit,
 // compiled as strict C99 (and as C++, which hosts also are) against include/.
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// Embedding in an emulator (issue 11): each test is a condition an emulator meets that made the
+// SPDX-License-Identifier: MIT
+// Embedding in an emulator: each test is a condition an emulator meets that made the
 // 1.1 library return GE2GL_OK with a wrong picture or a hang — memory coherence, unreported CPU
 // writes, second threads, the host's own GL context and state, presenting, callbacks that block,
 // creation errors. Hosts here use only the C ABI, and for GL a context they make themselves

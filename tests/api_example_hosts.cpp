@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The API 1.2 example hosts run as an emulator author would run them (examples/egl_host.c,
 // examples/threaded_host.c), their outputs checked:
 //   - egl_host draws through GE2GL_BACKEND_GL_CURRENT on its own EGL context, checks its GL state

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: a host's own GL context, made the way an emulator makes one (libOSMesa or libEGL
 // opened by the host itself, GL entry points through the library's GetProcAddress), plus the GL
 // state a host keeps: scramble() sets a distinctive value for everything ge2gl touches, check()

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: an "emulator" that owns PSP RAM/VRAM, writes display lists into it like a game,
 // and talks to ge2gl only through the C ABI (include/ge2gl/ge2gl.h).
 #pragma once
@@ -116,7 +117,7 @@ public:
         put(0x0C, endArg);
         return a;
     }
-    // SIGNAL + END carrying a 32-bit address/offset split in two halves (§4.4 jump/call forms).
+    // SIGNAL + END carrying a 32-bit address/offset split in two halves (docs/ge-rules.md §4.4 jump/call forms).
     uint32_t signalAddr(uint32_t behaviour, uint32_t value) { return signal(behaviour, value >> 16, value & 0xFFFF); }
     uint32_t finish(uint32_t arg = 0) {
         uint32_t a = put(0x0F, arg);

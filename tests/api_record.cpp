@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frame-dump recording through the C ABI (ge2gl_record_begin/display/end; docs/recording.md):
 // the project's five scenes replayed through the plugin API (ge2gl_replay_dump) with recording on
 // give dumps that `ge2gl render` replays to the identical picture, that the .ppdmp reader and the

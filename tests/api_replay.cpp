@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The project's own dumps/ scenes replayed through the plugin C ABI the way an emulator drives the
 // GE (ge2gl_replay_dump: guest memory writes, list enqueue, stall updates, run, draw sync; then a
 // frame read-back) give the same pixels as `ge2gl render` (the tools' render path on GeEngine).

@@ -1,4 +1,5 @@
-// Whole-GE save states through the C ABI (issue 14; include/ge2gl/ge2gl.h "Save states",
+// SPDX-License-Identifier: MIT
+// Whole-GE save states through the C ABI (include/ge2gl/ge2gl.h "Save states",
 // docs/savestate.md). A dump is replayed the way an emulator drives the GE (memory writes,
 // enqueue, stall updates, runs); every 100 commands the state is saved (with guest memory) and
 // loaded into a fresh instance of the other backend, which goes on with the frame. The finished

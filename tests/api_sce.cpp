@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // sceGe semantics through the C ABI, driven as an emulator would drive them: lists written into
 // host-owned RAM, sceGe calls forwarded, interrupts received through callbacks. Expected values
-// follow ge-reference.md §4.4, §4.5, §4.7 (uOFW behaviour) and are worked out by hand per test.
+// follow docs/ge-rules.md §4.4, §4.5, §4.7 (uOFW behaviour) and are worked out by hand per test.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -220,7 +221,7 @@ TEST(ApiQueue, TailAndHeadOrder) {
     EXPECT_EQ(host.only("F").size(), 1u);
 }
 
-// sceGeListSync / sceGeDrawSync in both modes at every list state (§4.7).
+// sceGeListSync / sceGeDrawSync in both modes at every list state (ge-rules.md §4.7).
 TEST(ApiSync, WaitAndPeekAtEveryState) {
     Host host;
     ListWriter A(host, L0);
@@ -361,7 +362,7 @@ TEST(ApiBreak, ResetClearsTheQueue) {
     EXPECT_EQ(host.cmd(TEC), word(TEC, 1));
 }
 
-// ---- SIGNAL behaviours (§4.4) ----
+// ---- SIGNAL behaviours (ge-rules.md §4.4) ----
 
 TEST(ApiSignal, HandlerSuspendAndContinueCallBackAndGoOn) {
     Host host;
@@ -713,7 +714,7 @@ namespace {
 // A list that sets every context register to a pattern and loads all matrices.
 void writeStateList(Host& host, uint32_t at, uint32_t seed) {
     ListWriter L(host, at);
-    // The state opcodes of the 512-word context (ppdmp-format.md §5), minus those with side
+    // The state opcodes of the 512-word context (docs/ppdmp.md §5), minus those with side
     // effects on list flow (BASE/OFFSET/ORIGIN) and the address registers.
     const std::pair<int, int> ranges[] = {{0x12, 0x12}, {0x15, 0x28}, {0x2C, 0x33}, {0x36, 0x38}, {0x42, 0x4D},
                                           {0x50, 0x51}, {0x53, 0x58}, {0x5B, 0xB5}, {0xB8, 0xC3}, {0xC5, 0xCA},
@@ -781,7 +782,7 @@ TEST(ApiContext, SaveRestoreRoundTripsRegistersAndMatrices) {
     EXPECT_TRUE(snapshot(host) == s1);
 
     // A list with its own context buffer leaves the state as it found it (saved at start,
-    // restored at FINISH, §4.5), and the buffer holds that state.
+    // restored at FINISH, ge-rules.md §4.5), and the buffer holds that state.
     ge2gl_list_args args{16, 0x08300000, 0, 0};
     runList(host, 0x08140000, &args);
     EXPECT_TRUE(snapshot(host) == s1);
@@ -826,7 +827,7 @@ TEST(ApiReadback, GetCmdAndGetMtxFollowTheHardwareRules) {
     L.finish();
     runList(host, L0);
     EXPECT_EQ(host.cmd(TEC), 0xCAABCDEFu);
-    // Data ports read back as the bare opcode; number registers as the current index (§1).
+    // Data ports read back as the bare opcode; number registers as the current index (ge-rules.md §1).
     EXPECT_EQ(host.cmd(0x3B), 0x3B000000u);
     EXPECT_EQ(host.cmd(0x3A), 0x3A000005u);
     EXPECT_EQ(host.cmd(0x2B), 0x2B000000u);

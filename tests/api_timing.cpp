@@ -1,4 +1,5 @@
-// GE time through the C ABI (issue 14; docs/timing.md): ge2gl_run_until stops at the tick asked,
+// SPDX-License-Identifier: MIT
+// GE time through the C ABI (docs/timing.md): ge2gl_run_until stops at the tick asked,
 // interrupts carry the tick they occur at, ge2gl_list_ticks gives each list its own time, and the
 // time survives a save state.
 #include <gtest/gtest.h>

@@ -1,5 +1,6 @@
-// Lighting tests (manual equations 9-1 … 9-10; ge-reference §8.3, §8.9, §8.12). Each expected
-// colour is worked out by hand with the fixed-point forms of §8.3:
+// SPDX-License-Identifier: MIT
+// Lighting tests (manual equations 9-1 … 9-10; docs/ge-rules.md §8.3, §8.9, §8.12). Each expected
+// colour is worked out by hand with the fixed-point forms of ge-rules.md §8.3:
 //   global ambient ((2·MAC + 1)·(2·AC + 1)) >> 10;  per light ((2·Lc + 1)·(2·Mc + 1)·s) >> 19,
 //   s = min(512, ceil(512·k + 1)).
 #include <gtest/gtest.h>
@@ -41,7 +42,7 @@ struct Rig {
 const float kOrigin[3] = {0, 0, 0};
 const float kUp[3] = {0, 0, 1};
 
-// ((2L + 1)(2M + 1)·s) >> 19 with s = min(512, ceil(512k + 1)) — the hand formula of §8.3.
+// ((2L + 1)(2M + 1)·s) >> 19 with s = min(512, ceil(512k + 1)) — the hand formula of ge-rules.md §8.3.
 int term(int L, int M, double k) {
     int s = int(std::ceil(512.0 * k + 1.0));
     if (s > 512) s = 512;
@@ -152,7 +153,7 @@ TEST(GeoLighting, SpotLight) {
     // Outside the cone (cutoff 0.95 > 0.894): nothing.
     r.setf(GE_CMD_LKO0, 0.95f);
     EXPECT_EQ(r.run(p, kUp).c[0], 0);
-    // Exponent ≤ 0 gives a spot factor of 1 (§8.9): k = 0.894 → s = ceil(458.0 + 1) = 459.
+    // Exponent ≤ 0 gives a spot factor of 1 (ge-rules.md §8.9): k = 0.894 → s = ceil(458.0 + 1) = 459.
     r.setf(GE_CMD_LKO0, 0.5f), r.setf(GE_CMD_LKS0, 0);
     EXPECT_EQ(r.run(p, kUp).c[0], (511 * 201 * 459) >> 19);
     // LTYPE type 3 behaves as a spot.

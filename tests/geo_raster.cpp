@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // Rasteriser tests: coverage rules (top-left fill, rectangles, lines, points), attribute
-// interpolation, rectangle texture orientation (ge-reference §8.1, §8.2, §8.11) and bands.
+// interpolation, rectangle texture orientation (docs/ge-rules.md §8.1, §8.2, §8.11) and bands.
 // Expected values are worked out by hand from those rules.
 #include <gtest/gtest.h>
 
@@ -382,7 +383,7 @@ TEST(GeoRaster, RectangleColourZFogFromSecondVertex) {
 
 TEST(GeoRaster, RectangleTextureOrientation) {
     // A 4×4 rectangle with v0 texture (0, 0) and v1 texture (1, 1), for each position of v0
-    // relative to v1 (§8.2). Pixel centres sit at fractions 1/8, 3/8, 5/8, 7/8 of the box.
+    // relative to v1 (ge-rules.md §8.2). Pixel centres sit at fractions 1/8, 3/8, 5/8, 7/8 of the box.
     RasterParams rp = fullScreen();
     rp.textured = true;
     struct Case {
@@ -456,7 +457,7 @@ TEST(GeoRaster, LinesLeaveOutEndPixel) {
 // The reference renderer walks lines by accumulating (dx, dy) / steps in double precision and
 // truncating: from (0, 0) to (1.5, 9) px the X after six steps of 24/9 subpixels is
 // 15.999999999999998, still pixel 0, where exact arithmetic would reach pixel 1 (the Virtua
-// Tennis court lines need this walk: MSE 6.37 -> 3.07).
+// Tennis frametest's court lines need this walk; docs/accuracy.md).
 TEST(GeoRaster, LinesAccumulateTheirStepInDoublePrecision) {
     Collector c;
     rasterLine(fullScreen(), sv16(0, 0), sv16(24, 144), Band{}, c.sink);

@@ -1,4 +1,5 @@
-// Patch tessellation (manual §5; ge-reference §3.2). Expected values from the Bernstein and
+// SPDX-License-Identifier: MIT
+// Patch tessellation (manual §5; docs/ge-rules.md §3.2). Expected values from the Bernstein and
 // B-spline definitions of the manual, computed by hand.
 #include <gtest/gtest.h>
 

@@ -1,6 +1,7 @@
-// Vertex processing and clipping tests: matrix element order (ge-reference §3.4), viewport and
-// the 1/16-pixel rounding (§8.1), texture-coordinate generation (§13.1–13.2, §8.10), fog (§3.9,
-// §8.9) and the clipping/discard rules (§8.5). Expected values are computed by hand.
+// SPDX-License-Identifier: MIT
+// Vertex processing and clipping tests: matrix element order (docs/ge-rules.md §3.4), viewport and
+// the 1/16-pixel rounding (ge-rules.md §8.1), texture-coordinate generation (manual §13.1–13.2, ge-rules.md §8.10), fog (ge-rules.md §3.9,
+// §8.9) and the clipping/discard rules (ge-rules.md §8.5). Expected values are computed by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +47,7 @@ DecodedVertex at(float x, float y, float z) {
 }  // namespace
 
 TEST(GeoTransform, MatrixElementOrder) {
-    // Element k of a 3×4 matrix is row k%3, column k/3; of the 4×4 row k%4, column k/4 (§3.4).
+    // Element k of a 3×4 matrix is row k%3, column k/3; of the 4×4 row k%4, column k/4 (ge-rules.md §3.4).
     float m12[12], m16[16];
     for (int k = 0; k < 12; ++k) m12[k] = float(k + 1);
     for (int k = 0; k < 16; ++k) m16[k] = float(k + 1);
@@ -268,7 +269,7 @@ TEST(GeoTransform, ScreenRangeAndDepthFlags) {
     EXPECT_TRUE(r.run(at(5000, 10, 0.5f)).outside);
 }
 
-// NaN and huge screen Z/W convert to integers without undefined behaviour (issue 12: clang's
+// NaN and huge screen Z/W convert to integers without undefined behaviour (clang's
 // float-cast-overflow check, enabled in the sanitizer build, caught int(NaN) here): NaN depth is 0,
 // huge depth 65535, a NaN clip parameter gives the first vertex's colour.
 TEST(GeoTransform, NanAndHugeDepthConvertSafely) {
@@ -463,7 +464,7 @@ TEST(GeoClip, IntersectionInterpolatedFromOutsideVertex) {
 }
 
 TEST(GeoTransform, ProjectionRectangleKeepsRectangleWalkWhenQIsOne) {
-    // A transform-mode rectangle with projection mapping is drawn as two triangles (§8.2) unless
+    // A transform-mode rectangle with projection mapping is drawn as two triangles (ge-rules.md §8.2) unless
     // the texture matrix makes Q = 1 for every vertex (Q column 0 for X and Y, 0 for Z or UV
     // source, translation Q = 1): PPSSPP's software renderer keeps the rectangle walk then.
     Rig r;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared helpers for the GL translator tests: a headless renderer (skipped cleanly when no GL
 // context can be created), a 64×64 scene built with ListBuilder, run through GeEngine, and exact
 // VRAM reads after flushToMemory().

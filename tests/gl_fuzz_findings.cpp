@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Regressions for what the libFuzzer harnesses found in the GL translator (docs/fuzzing.md).
 #include "tests/gl_fixture.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Corrupted dumps replayed through the GL translator: never a crash or out-of-bounds access.
 #include <gtest/gtest.h>
 

@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode's geometry shader (shadergen/hw_geometry.cpp, contract in hw_vertex.h)
 // against the CPU path it replaces: translator/vertex_pipeline.cpp VertexPipeline::processPrim on
 // the same state and vertex bytes gives Geometry::tris, the GlVertex stream (drawing coordinates)
 // the geometry shader must emit, in the same order. Transform feedback of the geometry shader's
 // output (GL_TRIANGLES) is compared vertex for vertex and bit for bit: position (x, y on the 1/16
 // grid plus the sample shift, to NDC), primary and secondary colours, Z, fog, texture coordinates.
-// The scenes put vertices beyond the near plane (geometry/clip.cpp clipTriangleNear; ge-reference
+// The scenes put vertices beyond the near plane (geometry/clip.cpp clipTriangleNear; docs/ge-rules.md
 // §8.5), behind the camera, off the 4096² screen, in lists, strips and fans (the reference's ring
 // order, geometry/assembly.h), with culling either way and flat shading. EachRuleIsNeeded breaks
 // one rule of the shader at a time and checks that the comparison then fails; the rendering tests

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL harness of the hardware mode's geometry tests (tests/gl_hw_clip.cpp, gl_hw_through.cpp):
 // one OSMesa context for the test binary, programs of the hw vertex + geometry shader whose output
 // is captured with transform feedback, and the REQUIRE_GL() opening of each test.

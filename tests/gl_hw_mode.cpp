@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode (GlMode::Hw): native GL rasterisation at render scale N, VRAM write-back
 // box-downsampled to the PSP's pixels, the displayed frame read at N× from the render target.
 //
-// What must hold (issue 16): at 1× the hardware mode draws what the software model draws on
+// What must hold: at 1× the hardware mode draws what the software model draws on
 // scenes whose pixels GL's float interpolation cannot move (through-mode rectangles, flat colours,
 // texels mapped 1:1); at N× a scene without primitive edges inside PSP pixels writes back exactly
 // the 1× VRAM (dither indexed by the PSP pixel, not the scaled one); the N× frame really holds

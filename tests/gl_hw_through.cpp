@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Through-mode PRIMs (VTYPE bit 23) on the GL hardware mode's GPU vertex path: the vertex shader
 // (shadergen/hw_vertex.cpp, key.through) and geometry shader (hw_geometry.cpp) against
 // translator/vertex_pipeline.cpp VertexPipeline::processPrim on the same state and vertex bytes.

@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: MIT
 // The GL hardware mode's generated vertex shader (shadergen/hw_vertex.*) against the CPU code every
 // backend runs: hle/vertex_decoder (formats, morphing, skinning) + geo::makeTransformState /
 // geo::transformVertex (matrices, viewport, 1/16-pixel snap, depth, fog, texture mapping, lighting)
-// and the §8.5 discard rules (geometry/clip.cpp), through transform feedback on the headless
+// and the docs/ge-rules.md §8.5 discard rules (geometry/clip.cpp), through transform feedback on the headless
 // context: every output of every vertex must be the CPU's, bit for bit. Each case runs both
 // variants of the vertex shader: alone (positions as the homogeneous form of the snapped drawing
 // position, colours, Z, fog, texture coordinates, clip distance) and feeding the geometry shader
@@ -214,7 +215,7 @@ Harness* harness() {
 
 float f24(float f) { return float24(toFloat24(f)); }  // a value a display list can hold
 
-// VTYPE from its fields (ge-reference §5.1): formats, weight count 1–8, morph count 1–8.
+// VTYPE from its fields (ge-rules.md §5.1): formats, weight count 1–8, morph count 1–8.
 u32 vt_from(u32 tc, u32 col, u32 nrm, u32 pos, u32 wt = 0, u32 wc = 1, u32 mc = 1) {
     return tc | col << 2 | nrm << 5 | pos << 7 | wt << 9 | (wc - 1) << 14 | (mc - 1) << 18;
 }
@@ -874,7 +875,7 @@ TEST(GlHwVertex, TextureMappingModes) {
 TEST(GlHwVertex, FogFactorAndItsSpecials) {
     REQUIRE_GL();
     // Per-vertex (z_view + FOG1)·FOG2, FOG1 infinite or NaN (the whole draw 0 or 1), FOG2
-    // infinite (±262144), §8.9.
+    // infinite (±262144), ge-rules.md §8.9.
     const u32 fog1[] = {0, 0x7F8000, 0xFF8000, 0x7FC000, 0};
     const u32 fog2[] = {0, 0x3F8000, 0xBF8000, 0x3F8000, 0x7F8000};
     for (int i = 0; i < 5; ++i) {
@@ -1011,7 +1012,7 @@ TEST(GlHwVertex, VertexIdFromDrawArraysFirstAndFromIndices) {
 
 TEST(GlHwVertex, VerticesWithoutPositionAreDropped) {
     REQUIRE_GL();
-    // VT = 0: three reserved bytes, the vertex is dropped (§8.11).
+    // VT = 0: three reserved bytes, the vertex is dropped (ge-rules.md §8.11).
     Case c = makeCase(1300, vt_from(2, 7, 1, 0), 50);
     const Report rep = runCase(H, c);
     EXPECT_EQ(rep.total(), 0) << rep.summary();

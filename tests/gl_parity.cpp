@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL ↔ software-model parity (exact interpolation, translator/tri_setup.h): scenes whose pixels
 // depend on per-pixel interpolation — Gouraud colours across large triangles, perspective-correct
 // texture coordinates with bilinear filtering and per-quad mipmap selection, interpolated fog,
@@ -203,7 +204,7 @@ void stripScene(ListBuilder& b) {
 
 // Triangles whose edges pass exactly through sample points (16·x + 7 in 1/16 pixel): horizontal
 // top and bottom edges, vertical left and right edges and diagonals, both windings. The top-left
-// rule (ref §8.1) decides those pixels.
+// rule (docs/ge-rules.md §8.1) decides those pixels.
 void tieScene(ListBuilder& b) {
     frame(b, GE_FORMAT_8888);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0x00000000, 0, 0);

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // GL translator: the GE pixel pipeline in the fragment shader, checked byte-exactly against the
-// fixed-point formulas of ge-reference.md §8.3, §8.7, §8.8 — in both the extension path
+// fixed-point formulas of docs/ge-rules.md §8.3, §8.7, §8.8 — in both the extension path
 // (framebuffer fetch) and `baseline` (destination copies).
 #include <algorithm>
 #include <vector>
@@ -26,7 +27,7 @@ u32 solidTexture(ListBuilder& b, u32 color) {
     return addr;
 }
 
-// ---- texture functions (ref §8.3) ----
+// ---- texture functions (ge-rules.md §8.3) ----
 TEST_P(GlPixel, TextureFunctionsMatchFixedPointFormulas) {
     const u32 P = rgba(0x10, 0x80, 0xFF, 0x60);
     const u32 T = rgba(0x20, 0x40, 0xC0, 0x80);
@@ -89,7 +90,7 @@ TEST_P(GlPixel, TextureFunctionsMatchFixedPointFormulas) {
     }
 }
 
-// ---- blending (ref §3.10 factors, §8.3 arithmetic) ----
+// ---- blending (ge-rules.md §3.10 factors, §8.3 arithmetic) ----
 TEST_P(GlPixel, BlendEquationsAndFactorsAreExact) {
     const u32 Cd = rgba(0x40, 0x80, 0xC0, 0x90);  // Ad = 0x90 (stencil byte)
     const u32 Cs = rgba(0xE0, 0x60, 0x20, 0xA0);  // As = 0xA0
@@ -140,7 +141,7 @@ TEST_P(GlPixel, BlendEquationsAndFactorsAreExact) {
             }
             out |= u32(std::clamp(v, 0, 255)) << (8 * i);
         }
-        return out | (Cd & 0xFF000000);  // blending never writes alpha (ref §8.7)
+        return out | (Cd & 0xFF000000);  // blending never writes alpha (ge-rules.md §8.7)
     };
     // Hand check: ADD with A = As (0xA0), B = 1−As on red: ((2·0xE0+1)(2·0xA0+1))>>10 = 449·321>>10
     // = 140; ((2·0x40+1)(2·0x5F+1))>>10 = 129·191>>10 = 24; sum 164.
@@ -186,7 +187,7 @@ TEST_P(GlPixel, OverlappingBlendedPrimitivesInOneDrawAccumulate) {
     EXPECT_EQ(ch(px32(22, 2), 0), u32(r2));
 }
 
-// ---- stencil (ref §8.7) ----
+// ---- stencil (ge-rules.md §8.7) ----
 TEST_P(GlPixel, StencilOpsPerFormat) {
     struct Case {
         u32 fmt, clearStencil, func, ref, sfail, zpass;
@@ -202,7 +203,7 @@ TEST_P(GlPixel, StencilOpsPerFormat) {
         {GE_FORMAT_8888, 5, 1, 0x33, 0, 1, 0, true},
         {GE_FORMAT_8888, 5, 0, 0x33, 2, 0, 0x33, false},
         {GE_FORMAT_8888, 0xFF, 1, 0, 0, 4, 0xFF, true},       // INCR saturates
-        {GE_FORMAT_8888, 5, 4, 3, 1, 2, 3, true},             // LESS: (3 & m) < (5 & m) passes (§8.7 order)
+        {GE_FORMAT_8888, 5, 4, 3, 1, 2, 3, true},             // LESS: (3 & m) < (5 & m) passes (ge-rules.md §8.7 order)
         {GE_FORMAT_8888, 5, 4, 7, 1, 2, 0, false},            // LESS fails → sfail ZERO
     };
     for (const Case& c : cases) {
@@ -283,7 +284,7 @@ TEST_P(GlPixel, DepthTestAndWriteMask) {
     EXPECT_EQ(depth(17, 1), 3000);
 }
 
-// ---- logic ops (ref §3.10) ----
+// ---- logic ops (ge-rules.md §3.10) ----
 TEST_P(GlPixel, LogicOps) {
     const u32 d = 0x0055AA0F, s = 0x003C3CF0;
     setupFrame();
@@ -347,7 +348,7 @@ TEST_P(GlPixel, AlphaAndColorTests) {
     EXPECT_EQ(px32(21, 1), 0u);
 }
 
-// ---- dithering (ref §3.10, §8.8) ----
+// ---- dithering (ge-rules.md §3.10, §8.8) ----
 TEST_P(GlPixel, DitherMatrixBeforeTruncation) {
     const int m[16] = {-8, 0, 7, -1, 3, -4, 1, 6, 2, -2, -3, 4, 5, -5, -6, -7};
     setupFrame(GE_FORMAT_565);
@@ -366,7 +367,7 @@ TEST_P(GlPixel, DitherMatrixBeforeTruncation) {
         }
 }
 
-// ---- write masks (ref §8.8) ----
+// ---- write masks (ge-rules.md §8.8) ----
 TEST_P(GlPixel, PixelMasksProtectBits) {
     setupFrame();
     b->clear(CLEAR_COLOR | CLEAR_STENCIL, 0x00A5A5A5, 0, 0x5A);
@@ -381,7 +382,7 @@ TEST_P(GlPixel, PixelMasksProtectBits) {
     EXPECT_EQ(px32(5, 1), 0x5A1234A5u);
 }
 
-// ---- fog (ref §3.9, §8.3) in transform mode ----
+// ---- fog (ge-rules.md §3.9, §8.3) in transform mode ----
 TEST_P(GlPixel, FogBlendsTowardFogColor) {
     setupFrame();
     b->clear(CLEAR_COLOR | CLEAR_STENCIL, 0, 0, 0);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL translator end-to-end: clears, flat rectangles and frame-buffer formats, exact VRAM bytes.
 #include "tests/gl_fixture.h"
 
@@ -34,7 +35,7 @@ TEST_P(GlBasic, RectangleCoversHalfOpenRange) {
     b->clear(CLEAR_COLOR | CLEAR_STENCIL, 0, 0, 0);
     rect(10, 20, 30, 25, 0xFF00FF00);
     run();
-    EXPECT_EQ(px32(10, 20), 0x0000FF00u);  // alpha keeps the stencil (no stencil test, ref §8.7)
+    EXPECT_EQ(px32(10, 20), 0x0000FF00u);  // alpha keeps the stencil (no stencil test, docs/ge-rules.md §8.7)
     EXPECT_EQ(px32(29, 24), 0x0000FF00u);
     EXPECT_EQ(px32(30, 24), 0u);
     EXPECT_EQ(px32(29, 25), 0u);
@@ -47,7 +48,7 @@ TEST_P(GlBasic, Format5650TruncatesOnWrite) {
     b->clear(CLEAR_COLOR, 0, 0, 0);
     rect(0, 0, 8, 8, 0xFF3F7FFF);  // R=FF G=7F B=3F
     run();
-    // R 0xFF → 31, G 0x7F → 31, B 0x3F → 7 (ref §8.8 truncation).
+    // R 0xFF → 31, G 0x7F → 31, B 0x3F → 7 (ge-rules.md §8.8 truncation).
     EXPECT_EQ(px16(3, 3), u16(31 | (31 << 5) | (7 << 11)));
     EXPECT_EQ(px16(8, 3), 0);
 }

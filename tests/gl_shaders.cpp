@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shader generation and program caching: key canonicalisation, generator fuzzing (random keys →
 // GLSL → compile and link on the headless context), the on-disk program-binary cache (a second
 // renderer compiles nothing), shader dumps, stats, and EGL context creation.

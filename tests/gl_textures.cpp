@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL translator: texture sampling (nearest/bilinear with 4-bit weights, wrap/clamp), CLUT,
 // render-to-texture and CLUT loads from a frame buffer, transfers and CPU writes over targets.
 #include <algorithm>
@@ -42,7 +43,7 @@ TEST_P(GlTexture, NearestRepeatAndClamp) {
 TEST_P(GlTexture, BilinearUsesFourBitWeights) {
     // 2×1 texture (black, white), stretched over 16 pixels with clamp: pixel x samples at
     // u = (x + 0.5)·2/16 texels; u0 = floor(u − 0.5) and the 4-bit fraction weights the two texels
-    // (ref §8.10): value = (0·(16 − f) + 255·f) >> 4... per channel ((c0·(16−f)(16−fv) + …) >> 8).
+    // (docs/ge-rules.md §8.10): value = (0·(16 − f) + 255·f) >> 4... per channel ((c0·(16−f)(16−fv) + …) >> 8).
     const u32 tex[4] = {rgba(0, 0, 0, 255), rgba(255, 255, 255, 255), 0, 0};
     setupFrame();
     b->clear(CLEAR_COLOR | CLEAR_STENCIL, 0, 0, 0);
@@ -67,7 +68,7 @@ TEST_P(GlTexture, BilinearUsesFourBitWeights) {
 }
 
 TEST_P(GlTexture, Clut8With5551Palette) {
-    // Palette in RAM (5551), indices in RAM, shift 0 mask 0xFF start 0 (ref §6.4).
+    // Palette in RAM (5551), indices in RAM, shift 0 mask 0xFF start 0 (ge-rules.md §6.4).
     std::vector<u16> pal(256);
     for (int i = 0; i < 256; ++i) pal[size_t(i)] = u16((i & 31) | ((31 - (i & 31)) << 10) | 0x8000);
     std::vector<u8> idx(16 * 4);
@@ -173,7 +174,7 @@ TEST_P(GlTexture, CpuWriteBetweenDrawsIsKept) {
 }
 
 TEST_P(GlTexture, MipLevelsFromConstantLodAndBias) {
-    // Level 0 (8×8) red, level 1 (4×4) green. TLEVEL constant mode: d = OFFL (ref §6.6).
+    // Level 0 (8×8) red, level 1 (4×4) green. TLEVEL constant mode: d = OFFL (ge-rules.md §6.6).
     std::vector<u32> l0(64, rgba(255, 0, 0, 255)), l1(16, rgba(0, 255, 0, 255));
     setupFrame();
     b->clear(CLEAR_COLOR | CLEAR_STENCIL, 0, 0, 0);
@@ -194,7 +195,7 @@ TEST_P(GlTexture, MipLevelsFromConstantLodAndBias) {
     run();
     EXPECT_EQ(px32(3, 3) & 0xFFFFFF, 0x00FF00u);
     EXPECT_EQ(px32(11, 3) & 0xFFFFFF, 0x0000FFu);
-    // c = (c_next·8 + c·(16 − 8)) >> 4 = (255·8) >> 4 = 127 per side (ref §8.10).
+    // c = (c_next·8 + c·(16 − 8)) >> 4 = (255·8) >> 4 = 127 per side (ge-rules.md §8.10).
     EXPECT_EQ(px32(19, 3) & 0xFFFFFF, rgba(127, 127, 0, 0));
 }
 

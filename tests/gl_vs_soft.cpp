@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Differential tests (style-anchors §7.12): the same display list through the GL translator and
 // the software model (the bit-accurate reference), comparing VRAM byte for byte.
 //
@@ -165,7 +166,7 @@ TEST(GlVsSoft, ZeroAreaTrianglesAreIdentical) {
         b.drawArrayData(GE_PRIM_TRIANGLE_STRIP, vtype, 5, nullptr, packVertices(vtype, v, 5).data());
     };
     expectSame(build, 0, 0);
-    // The software model did draw pixels of the diagonal (the reference's rule, not §8.11's).
+    // The software model did draw pixels of the diagonal (the reference's rule, docs/ge-rules.md §8.11).
     Frame s;
     std::string err;
     ASSERT_TRUE(renderWith(false, build, s, err)) << err;
@@ -411,7 +412,7 @@ void latchedUvScene(ListBuilder& b) {
     const u32 texels[8] = {0xFF0000FFu, 0xFF00FF00u, 0, 0, 0xFFFF0000u, 0xFFFFFFFFu, 0, 0};
     b.texMode(GE_TFMT_8888, 0, false);
     b.setTexture(0, b.place(texels, sizeof texels), 2, 2, 4);
-    b.texFunc(3, true);  // REPLACE (manual §6.7)
+    b.texFunc(3, true);  // REPLACE (manual §13.13)
     b.texFilter(0, 0);
     b.enable(GE_CMD_TME, true);
     const u32 withUv = vt::TC_F | vt::COL_8888 | vt::POS_16 | vt::THROUGH, noUv = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
@@ -460,7 +461,7 @@ TEST(GlVsSoft, DrawsWithoutUvTakeTheLastUvTheVertexUnitRead) {
 // renderer's per-program shadow): programs alternate here with the same and with other texture
 // environment colours, so a shadow kept for the wrong program or not refreshed shows as a
 // sprite in the wrong colour. Texture function BLEND mixes the vertex colour and the environment
-// colour by the texel (manual §6.7).
+// colour by the texel (manual §13.13).
 TEST(GlVsSoft, UniformsFollowEachProgramAcrossSwitches) {
     expectSame([](ListBuilder& b) {
         frameSetup(b);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Robustness of the .ppdmp reader against damaged input: truncations, seeded bit flips and byte
 // overwrites in the header and both compressed blocks, lying size fields, damaged zips and
 // random garbage. Every load must either fail with a non-empty message or give a Dump whose
@@ -67,7 +68,7 @@ const std::vector<RawDump>& rawDumps() {
     return dumps;
 }
 
-// Layout of a well-formed raw dump (§2): header size H and where each block starts.
+// Layout of a well-formed raw dump (docs/ppdmp.md §2): header size H and where each block starts.
 struct Layout {
     size_t header = 0;     // H
     size_t cmdStart = 0;   // H + 12
@@ -145,7 +146,7 @@ TEST(DumpFuzz, Truncations) {
             SCOPED_TRACE("cut at " + std::to_string(cut));
             Dump d;
             std::string err;
-            // Every block is needed in full (§2), so every truncation is an error.
+            // Every block is needed in full (ppdmp.md §2), so every truncation is an error.
             EXPECT_FALSE(loadDumpFromMemory(rd.raw.data(), cut, d, err));
             EXPECT_FALSE(err.empty());
         }

@@ -1,4 +1,5 @@
-// .ppdmp reader/writer tests (ppdmp-format.md §1–3, §5, §7): hand-built files with known bytes,
+// SPDX-License-Identifier: MIT
+// .ppdmp reader/writer tests (docs/ppdmp.md §1–§3, §5, §7): hand-built files with known bytes,
 // error cases, the 20 frametest dumps (load, facts, read → serialise → read round trip) and the
 // DumpWriter.
 #include <gtest/gtest.h>
@@ -35,7 +36,7 @@ void put32(std::vector<u8>& v, u32 x) {
     v.insert(v.end(), b, b + 4);
 }
 
-// Raw snappy (§2.2) made only of literal elements: varint uncompressed length, then for each
+// Raw snappy (ppdmp.md §2.2) made only of literal elements: varint uncompressed length, then for each
 // chunk of ≤ 60 bytes a tag byte (len − 1) << 2 (element type 00 = literal) and the bytes.
 std::vector<u8> snappyLiteral(const std::vector<u8>& data) {
     std::vector<u8> out;
@@ -83,7 +84,7 @@ std::vector<u8> recordBytes(const std::vector<Record>& recs) {
     return out;
 }
 
-// §2 layout, with the caller's compressed blocks and header numbers (which may lie).
+// ppdmp.md §2 layout, with the caller's compressed blocks and header numbers (which may lie).
 std::vector<u8> buildFile(u32 version, const std::string& id9, u32 commandCount, u32 pushbufSize,
                           const std::vector<u8>& cmdBlock, const std::vector<u8>& pushBlock) {
     std::vector<u8> f = {'P', 'P', 'S', 'S', 'P', 'P', 'G', 'E'};
@@ -221,7 +222,7 @@ TEST(DumpLoad, HandBuiltV2Snappy) {
     ASSERT_EQ(d.pushbuf.size(), 20u);
     EXPECT_EQ(d.pushbuf[19], 0xB3);
     ASSERT_NE(d.payload(d.records[1]), nullptr);
-    EXPECT_EQ(d.payload(d.records[1])[0], 0xA3);  // misaligned payloads are fine (§3.1)
+    EXPECT_EQ(d.payload(d.records[1])[0], 0xA3);  // misaligned payloads are fine (ppdmp.md §3.1)
 }
 
 TEST(DumpLoad, HandBuiltV3AndV4Snappy) {
@@ -229,7 +230,7 @@ TEST(DumpLoad, HandBuiltV3AndV4Snappy) {
     std::string err;
     ASSERT_TRUE(load(buildValid(3, "", kRecs, pushBytes20()), d, err)) << err;
     EXPECT_EQ(d.version, 3u);
-    // v4: 9-byte ID that fills all 9 bytes without a NUL (§2).
+    // v4: 9-byte ID that fills all 9 bytes without a NUL (ppdmp.md §2).
     ASSERT_TRUE(load(buildValid(4, "ULUS10598", kRecs, pushBytes20()), d, err)) << err;
     EXPECT_EQ(d.version, 4u);
     EXPECT_EQ(d.gameId, "ULUS10598");
@@ -276,7 +277,7 @@ TEST(DumpLoad, RecordOutsidePushBufferIsNotALoadError) {
     EXPECT_NE(d.payload(d.records[0]), nullptr);
     EXPECT_EQ(d.payload(d.records[1]), nullptr);
     EXPECT_EQ(d.payload(d.records[2]), nullptr);
-    // Unknown record types are kept; refusing them is the player's job (§3.2).
+    // Unknown record types are kept; refusing them is the player's job (ppdmp.md §3.2).
     ASSERT_TRUE(load(buildValid(3, "", {{0x0C, 0, 0}}, pushBytes20()), d, err)) << err;
     EXPECT_EQ(d.records[0].type, 0x0C);
 }
@@ -363,7 +364,7 @@ std::vector<u8> zstdRleBomb(u32 blocks) {
     return out;
 }
 
-// Hostile sizes cost neither memory nor time (issue 12): a 4 KB frame that would decompress to
+// Hostile sizes cost neither memory nor time: a 4 KB frame that would decompress to
 // 128 MiB under a header that says 64 bytes stops at the header's size; caps on the header's
 // record count and push-buffer size (ppdmp.h) refuse before anything is allocated.
 TEST(DumpLoad, DecompressionBombsStopAtTheHeadersSize) {
@@ -396,7 +397,7 @@ u64 residentBytes() {
 }
 
 // A zip whose directory claims a 200 MiB entry that holds a few bytes: refused as truncated after
-// reading what is there, without allocating the claimed size first (issue 12).
+// reading what is there, without allocating the claimed size first.
 TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
     const fs::path zpath = tempPath("liar.zip");
     const std::vector<u8> body = buildValid(6, "LIAR00001", kRecs, pushBytes20());
@@ -456,7 +457,7 @@ TEST(DumpLoad, FilesAndZips) {
     EXPECT_FALSE(loadDump(junk.string(), d, err));
     EXPECT_NE(err.find("bad magic"), std::string::npos) << err;
 
-    // §1: the last entry ending in .ppdmp (case-insensitive) wins; __macosx/ is skipped.
+    // ppdmp.md §1: the last entry ending in .ppdmp (case-insensitive) wins; __macosx/ is skipped.
     const fs::path zpath = tempPath("pack.zip");
     {
         int zerr = 0;
@@ -526,7 +527,7 @@ TEST(DumpSave, HeaderBytesFollowSection7) {
     EXPECT_EQ(readLE32(&f[28]), 20u);  // pushbufSize
     const u32 cmdZ = readLE32(&f[32]);
     ASSERT_LE(36u + cmdZ + 4, f.size());
-    // One zstd frame carrying its content size (§2.2, §7.2).
+    // One zstd frame carrying its content size (ppdmp.md §2.2, §7 rule 2).
     EXPECT_EQ(ZSTD_getFrameContentSize(&f[36], cmdZ), 27ull);
     const u32 pushZ = readLE32(&f[36 + cmdZ]);
     EXPECT_EQ(size_t(36) + cmdZ + 4 + pushZ, f.size());  // nothing follows the second block
@@ -546,7 +547,7 @@ TEST(DumpSave, HeaderBytesFollowSection7) {
 TEST(DumpWriterTest, RoundTripThroughFile) {
     u32 ctx[512] = {};
     for (u32 i = 0; i < 512; ++i) ctx[i] = i * 0x01010101u;
-    ctx[384] = 0x0C000000;  // END (§5)
+    ctx[384] = 0x0C000000;  // END (ppdmp.md §5)
     DumpWriter w("TEST00001");
     w.init(ctx);
     w.display(0x04000000, 512, 3);
@@ -612,7 +613,7 @@ TEST(DumpWriterTest, FixedLayoutRecords) {
     w.edramTrans(0x400);
     const Dump& d = w.dump();
     ASSERT_EQ(d.records.size(), 8u);
-    // FRAMEBUFn: header u32 address, s32 bufw, u32 flags, u32 0, then the data (§3.2).
+    // FRAMEBUFn: header u32 address, s32 bufw, u32 flags, u32 0, then the data (ppdmp.md §3.2).
     EXPECT_EQ(d.records[0].type, FRAMEBUF0 + 2);
     EXPECT_EQ(d.records[0].size, 20u);
     EXPECT_EQ(d.payloadWord(d.records[0], 0), 0x04088000u);
@@ -647,7 +648,7 @@ TEST(DumpWriterTest, FixedLayoutRecords) {
 
 namespace {
 
-// §5: the 209 opcodes saved in words 17–225 of INIT, in order.
+// ppdmp.md §5: the 209 opcodes saved in words 17–225 of INIT, in order.
 std::vector<u32> initOpcodes() {
     const std::pair<u32, u32> ranges[] = {{0x00, 0x02}, {0x10, 0x10}, {0x12, 0x28}, {0x2C, 0x33}, {0x36, 0x38},
                                           {0x42, 0x4D}, {0x50, 0x51}, {0x53, 0x58}, {0x5B, 0xB5}, {0xB8, 0xC3},
@@ -690,9 +691,9 @@ TEST(DumpFrametests, AllLoad) {
         ASSERT_FALSE(d.records.empty());
         EXPECT_EQ(outOfRange, 0u);
         for (const Record& r : d.records) EXPECT_TRUE(isKnownRecordType(r.type)) << recordTypeName(r.type);
-        EXPECT_EQ(d.records.back().type, DISPLAY);  // §4: the frame to show ends every sample dump
+        EXPECT_EQ(d.records.back().type, DISPLAY);  // ppdmp.md §4: the frame to show ends every sample dump
 
-        // §5: INIT first, 2048 bytes, with the fixed words of the context layout.
+        // ppdmp.md §5: INIT first, 2048 bytes, with the fixed words of the context layout.
         const Record& init = d.records[0];
         ASSERT_EQ(init.type, INIT);
         ASSERT_EQ(init.size, kInitBytes);
@@ -706,10 +707,10 @@ TEST(DumpFrametests, AllLoad) {
         EXPECT_EQ(d.payloadWord(init, 384), 0x0C000000u);
         for (u32 w = 227; w < 323; ++w) ASSERT_EQ(d.payloadWord(init, w) >> 24, 0x2Bu) << w;
 
-        // §3.2: REGISTERS hold whole words and never the replaced flow/address commands.
+        // ppdmp.md §3.2: REGISTERS hold whole words and never the replaced flow/address commands.
         for (const Record& r : d.records) {
             SCOPED_TRACE(recordTypeName(r.type));
-            u32 fixedSize = 0;  // §3.2 fixed payload sizes
+            u32 fixedSize = 0;  // ppdmp.md §3.2 fixed payload sizes
             if (r.type == INIT) fixedSize = kInitBytes;
             if (r.type == DISPLAY || r.type == MEMSET) fixedSize = 12;
             if (r.type == MEMCPYDEST || r.type == EDRAMTRANS) fixedSize = 4;
@@ -755,7 +756,7 @@ TEST(DumpFrametests, KnownFacts) {
     EXPECT_EQ(d.gameId, "");
     EXPECT_EQ(d.records.size(), 2516u);
     EXPECT_EQ(d.pushbuf.size(), 623392u);
-    // §3.1: this v3 dump has TEXTUREn payloads that are not 16-byte aligned.
+    // ppdmp.md §3.1: this v3 dump has TEXTUREn payloads that are not 16-byte aligned.
     size_t misaligned = 0;
     for (const Record& r : d.records)
         if (textureLevelOf(r.type) >= 0 && r.ptr % 16 != 0) ++misaligned;

@@ -1,4 +1,5 @@
-// Display-list control commands (manual §20, §11.1; ge-reference §4), with expected values taken
+// SPDX-License-Identifier: MIT
+// Display-list control commands (manual §20, §11.1; docs/ge-rules.md §4), with expected values taken
 // from the reference's worked examples.
 #include <gtest/gtest.h>
 
@@ -68,7 +69,7 @@ TEST_F(EngineTest, BareEndStopsTheGe) {
 }
 
 TEST_F(EngineTest, BaseAndVadrFormAddress) {
-    // ge-reference §4.2: BASE 0x080000 then VADR 0x9ABCDE with OFFSET 0 → 0x089ABCDE.
+    // ge-rules.md §4.2: BASE 0x080000 then VADR 0x9ABCDE with OFFSET 0 → 0x089ABCDE.
     put(kList, {W(GE_CMD_BASE, 0x080000), W(GE_CMD_VADR, 0x9ABCDE), W(GE_CMD_IADR, 0x000010), W(GE_CMD_FINISH), W(GE_CMD_END)});
     runAt(kList);
     EXPECT_EQ(eng.state().vertexAddr, 0x089ABCDEu);
@@ -76,7 +77,7 @@ TEST_F(EngineTest, BaseAndVadrFormAddress) {
 }
 
 TEST_F(EngineTest, OriginThenJumpIsRelativeToTheOriginCommand) {
-    // §4.2: ORIGIN at 0x08801000, BASE 0, JUMP 0x000100 → PC = 0x08801100.
+    // ge-rules.md §4.2: ORIGIN at 0x08801000, BASE 0, JUMP 0x000100 → PC = 0x08801100.
     put(0x08801000, {W(GE_CMD_ORIGIN), W(GE_CMD_BASE, 0), W(GE_CMD_JUMP, 0x000100)});
     put(0x08801100, {W(GE_CMD_AC, 0xABCDEF), W(GE_CMD_FINISH), W(GE_CMD_END)});
     EXPECT_EQ(runAt(0x08801000), RunStatus::Completed);
@@ -179,7 +180,7 @@ TEST_F(EngineTest, UnknownOpcodesAreNoOps) {
     EXPECT_EQ(eng.state().AC_rgb(), 4u);
 }
 
-// ---- SIGNAL + END behaviours (ge-reference §4.4) ----
+// ---- SIGNAL + END behaviours (ge-rules.md §4.4) ----
 
 TEST_F(EngineTest, SignalHandlerCallsListenerAndContinues) {
     put(kList, {W(GE_CMD_SIGNAL, 0x020077), W(GE_CMD_END, 0x99), W(GE_CMD_AC, 1), W(GE_CMD_FINISH, 3), W(GE_CMD_END)});
@@ -345,7 +346,7 @@ TEST_F(EngineTest, ClutLoadCopiesBlocks) {
 }
 
 // Palette bytes from outside valid memory load as zero, not as what the palette held before
-// (pspautotests gpu/clut/address "Outside VRAM"; ge-reference's bad-access rule still counts it).
+// (pspautotests gpu/clut/address "Outside VRAM"; the engine still counts it as a bad access).
 TEST_F(EngineTest, ClutLoadPastValidMemoryLoadsZeros) {
     for (u32 i = 0; i < 64; ++i) mem.write8(0x08900000 + i, u8(0x80 + i));
     put(kList, {W(GE_CMD_CBW, 0x080000), W(GE_CMD_CBP, 0x900000), W(GE_CMD_CLOAD, 2), W(GE_CMD_FINISH), W(GE_CMD_END)});

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // ListBuilder (hle/list_builder.h): exact command words for known calls (expected values worked
-// out by hand from ge-reference.md §3 and the SDK conventions it records), vertex packing against
+// out by hand from docs/ge-rules.md §3 and the SDK conventions it records), vertex packing against
 // the manual's layout examples, execution of built lists on the GeEngine, the DumpRecorder's
 // record order, record-for-record equivalence of direct execution and dump replay, and the
 // project's own scene dumps in dumps/.
@@ -74,7 +75,7 @@ TEST(ListBuilder, ClearEmitsCmodeAroundThroughRectangles) {
     const std::vector<u32> want = {0xD3000501, 0x1280011C, 0x10080000, 0x01800000, 0x04060010, 0xD3000000};
     ASSERT_EQ(b.words(), want);
     // Vertex 0: colour (0x223344 | stencil<<24), x 0, y 0, z depth; vertex 15: x 480, y 272.
-    // Layout: colour at 0, position at 4, size 12 (ge-reference.md §5.2).
+    // Layout: colour at 0, position at 4, size 12 (ge-rules.md §5.2).
     const u32 v = 0x08800000;
     EXPECT_EQ(mem.read32(v), 0x77223344u);
     EXPECT_EQ(mem.read16(v + 4), 0);
@@ -146,7 +147,7 @@ TEST(ListBuilder, PixelOperations) {
 
 TEST(ListBuilder, DitherMatrixRows) {
     ListBuilder b;
-    // The SDK's default matrix (ge-reference.md §3.10).
+    // The SDK's default matrix (ge-rules.md §3.10).
     const int m[16] = {-4, 0, -3, 1, 2, -2, 3, -1, -3, 1, -4, 0, 3, -1, 2, -2};
     b.setDither(m);
     // Row 0: −4 → 0xC, 0, −3 → 0xD, 1 → nibbles 0..3 = 0x1D0C.
@@ -270,7 +271,7 @@ TEST(ListBuilder, PackVertexManualExamples) {
     EXPECT_EQ(readLE16(out + 12), 32767);
     EXPECT_EQ(readLE16(out + 14), 0);  // padding zeroed
 
-    // §6.4.4 (through): U,V u16 texels; C 5551; XYZ s16 → U 0, V 2, C 4, X 6, Y 8, Z 10.
+    // manual §6.4.4 (through): U,V u16 texels; C 5551; XYZ s16 → U 0, V 2, C 4, X 6, Y 8, Z 10.
     BuildVertex t;
     t.u = 300;
     t.v = 7;
@@ -465,7 +466,7 @@ TEST(ListBuilder, BuiltListRunsOnTheEngine) {
     EXPECT_EQ(r.draws[0].count, 16u);
     EXPECT_EQ(r.draws[1].count, 6u);
     EXPECT_EQ(r.draws[1].indexBytes, std::vector<u8>({0, 1, 2, 2, 1, 3}));
-    // The second rectangle draw continued after the first one's vertices (§4.6).
+    // The second rectangle draw continued after the first one's vertices (ge-rules.md §4.6).
     EXPECT_EQ(r.draws[3].vertexBytes.size(), 2u * 12);
     EXPECT_EQ(readLE16(r.draws[3].vertexBytes.data() + 4), 0);  // vertex 2: x 0
     EXPECT_EQ(readLE16(r.draws[3].vertexBytes.data() + 6), 100);
@@ -497,7 +498,7 @@ TEST(ListBuilder, CallListRunsASubList) {
 // Recording
 
 bool forbiddenInRegisters(u8 op) {
-    // ppdmp-format.md §7 rule 4.
+    // docs/ppdmp.md §7 rule 4.
     switch (op) {
     case GE_CMD_VADR: case GE_CMD_IADR: case GE_CMD_BASE: case GE_CMD_OFFSET: case GE_CMD_ORIGIN:
     case GE_CMD_JUMP: case GE_CMD_BJUMP: case GE_CMD_CALL: case GE_CMD_RET: case GE_CMD_END:
@@ -510,7 +511,7 @@ bool isKick(u8 op) {
     return op == GE_CMD_PRIM || op == GE_CMD_BEZIER || op == GE_CMD_SPLINE || op == GE_CMD_CLOAD || op == GE_CMD_XSTART;
 }
 
-// Checks the structural rules of ppdmp-format.md §4/§7 on a dump; returns the kick count.
+// Checks the structural rules of ppdmp.md §4/§7 on a dump; returns the kick count.
 u32 checkDumpStructure(const dump::Dump& d) {
     EXPECT_GE(d.records.size(), 3u);
     if (d.records.size() < 3) return 0;
@@ -624,7 +625,7 @@ TEST(DumpRecorder, RecordOrderFollowsThePpssppRecorder) {
     EXPECT_EQ(d.records[23].size, ((1u + 3) * 32 + 2 + 16) * 4);
     // Indexed draw: 6 indices, vertices 0..3.
     EXPECT_EQ(d.records[8].size, 6u);
-    EXPECT_EQ(d.records[9].size, 4u * 16);  // TC 0, colour 4, position 8: 16 bytes (§5.2)
+    EXPECT_EQ(d.records[9].size, 4u * 16);  // TC 0, colour 4, position 8: 16 bytes (ge-rules.md §5.2)
 }
 
 TEST(DumpRecorder, DrawnVramTexturesAreHeaderOnly) {

@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // Emulated memory as storage: reserved, not written (pages zero on first touch), and reusable
-// through clear() (issue 10: no cost proportional to the 64 MiB address space per replay).
+// through clear() (no cost proportional to the 64 MiB address space per replay).
 #include <gtest/gtest.h>
 
 #include <unistd.h>

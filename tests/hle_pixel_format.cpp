@@ -1,4 +1,5 @@
-// 16-bit pixel layouts (ge-reference §5.4, §6.1, §8.8): expected values computed by hand from
+// SPDX-License-Identifier: MIT
+// 16-bit pixel layouts (docs/ge-rules.md §5.4, §6.1, §8.8): expected values computed by hand from
 // the bit layouts and the replication / truncation rules.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,5 @@
-// Dump replay (ppdmp-format.md §6) on the real frametests, and robustness of the replay against
+// SPDX-License-Identifier: MIT
+// Dump replay (docs/ppdmp.md §6) on the real frametests, and robustness of the replay against
 // corrupted dumps (random words, record types, sizes and pointers): never a crash or a hang.
 #include <gtest/gtest.h>
 
@@ -77,7 +78,7 @@ TEST(Replay, MissingInitIsAnError) {
     EXPECT_FALSE(err.empty());
 }
 
-// Issue 12: a first record INIT of size 0 whose pointer lies outside an (empty) push buffer made
+// A first record INIT of size 0 whose pointer lies outside an (empty) push buffer made
 // the player memcpy from a null pointer; it is skipped with a warning.
 TEST(Replay, ZeroSizeInitOutsideThePushBufferIsSkipped) {
     dump::Dump d;
@@ -91,7 +92,7 @@ TEST(Replay, ZeroSizeInitOutsideThePushBufferIsSkipped) {
     EXPECT_NE(res.warning.find("outside the push buffer"), std::string::npos) << res.warning;
 }
 
-// One 4 MiB REGISTERS block behind 200,000 records (issue 12: `info` took minutes): summarize
+// One 4 MiB REGISTERS block behind 200,000 records (`info` once took minutes on it): summarize
 // scans a shared block once and multiplies.
 TEST(Replay, SummarizeCountsASharedBlockOnce) {
     dump::Dump d;

@@ -1,4 +1,5 @@
-// Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs; issue 12): small
+// SPDX-License-Identifier: MIT
+// Replays bounded in emulated GE time (hle/ge_time.h, ReplayOptions::maxGeMs): small
 // hostile dumps that loop or make the player copy without end stop at the budget with a warning,
 // and the estimate itself adds up as documented.
 #include <gtest/gtest.h>
@@ -77,7 +78,8 @@ TEST(ReplayBudget, SharedPayloadCopiesStopAtTheBudget) {
 }
 
 TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
-    // The project's scenes (real frames of the 20 frametests: at most 31 ms, docs/accuracy.md).
+    // The project's scenes (the 20 frametests' real frames take at most about 30 ms of GE time,
+    // docs/timing.md).
     for (const char* name : {"lit_textured_skinned", "clut_dxt_sprites", "bezier_spline", "blend_stencil_logic",
                              "render_to_texture"}) {
         SCOPED_TRACE(name);

@@ -1,4 +1,5 @@
-// When the GE runs during a dump replay (ppdmp-format.md §6.2 "When the GE runs"; PPSSPP's
+// SPDX-License-Identifier: MIT
+// When the GE runs during a dump replay (docs/ppdmp.md §6.2 "When the GE runs"; PPSSPP's
 // GPU/Debugger/Playback.cpp DumpExecute + BufMapping), with dumps this file writes itself.
 //
 // The probe: a FRAMEBUF record's bytes are copied into VRAM at once, without letting the GE catch

@@ -1,4 +1,5 @@
-// Field accessors, vertex layout, context layout and memory (ge-reference §1, §3, §5, §7).
+// SPDX-License-Identifier: MIT
+// Field accessors, vertex layout, context layout and memory (docs/ge-rules.md §1, §3, §5, §7).
 #include <gtest/gtest.h>
 
 #include "hle/disasm.h"
@@ -70,7 +71,7 @@ TEST(Fields, BufferAddressesAndWidths) {
     EXPECT_EQ(st.framebufAddr(), 0x04088000u);
     EXPECT_EQ(st.framebufStride(), 512u);
     EXPECT_EQ(st.depthbufAddr(), 0x04110000u);
-    // Texture buffer width alignment (§6.2): CLUT4 needs multiples of 32; 0 → minimum.
+    // Texture buffer width alignment (ge-rules.md §6.2): CLUT4 needs multiples of 32; 0 → minimum.
     st.regs[GE_CMD_TPF] = W(GE_CMD_TPF, GE_TFMT_CLUT4);
     st.regs[GE_CMD_TBW0] = W(GE_CMD_TBW0, 40);
     EXPECT_EQ(st.textureBufWidth(0), 32u);
@@ -111,7 +112,7 @@ TEST(Disasm, NamesCommandsAndFields) {
     EXPECT_EQ(disassemble(W(GE_CMD_ZTE, 1)), "ZTE on=on");
 }
 
-// ---- Vertex layout (ge-reference §5.3 worked examples) ----
+// ---- Vertex layout (ge-rules.md §5.3 worked examples) ----
 
 struct LayoutCase {
     u32 vtype;
@@ -139,7 +140,7 @@ TEST(VertexLayout, WorkedExamples) {
     EXPECT_EQ(l.posOff, 24);
 }
 
-// ---- Context (ppdmp-format.md §5) ----
+// ---- Context (docs/ppdmp.md §5) ----
 
 TEST(Context, LayoutAndRoundTrip) {
     GeState st;
@@ -177,7 +178,7 @@ TEST(Context, LayoutAndRoundTrip) {
     EXPECT_FALSE(back.loadContext(ctx));
 }
 
-// ---- Memory (ge-reference §7) ----
+// ---- Memory (ge-rules.md §7) ----
 
 TEST(MemoryMap, RegionsAndBounds) {
     Memory mem(32u << 20);
@@ -210,7 +211,7 @@ TEST(MemoryMap, RegionsAndBounds) {
 TEST(MemoryMap, EdramMirrorPermutation) {
     Memory mem(1u << 20);
     // Default translation 0x400: linear 0x0000 appears at mirror 1 offset 0x2040 and at mirror 3
-    // offset 0x2020 (ge-reference §7.3 example).
+    // offset 0x2020 (ge-rules.md §7.3 example).
     EXPECT_EQ(mem.edramTranslation(), 0x400u);
     EXPECT_EQ(mem.linearToMirror(0x0000, 1), 0x2040u);
     EXPECT_EQ(mem.linearToMirror(0x0000, 3), 0x2020u);

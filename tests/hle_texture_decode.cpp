@@ -1,5 +1,6 @@
-// Texture decoding (manual §13; ge-reference §6). Expected texels are computed by hand from the
-// reference's layouts; DXT values follow §6.5 (no endpoint replication, PSP block order).
+// SPDX-License-Identifier: MIT
+// Texture decoding (manual §13; docs/ge-rules.md §6). Expected texels are computed by hand from the
+// reference's layouts; DXT values follow ge-rules.md §6.5 (no endpoint replication, PSP block order).
 #include <gtest/gtest.h>
 
 #include "hle/pixel_format.h"
@@ -69,7 +70,7 @@ TEST(TextureDecode, Linear5551And4444And8888) {
 
 TEST(TextureDecode, BufferWidthZeroUsesTheMinimum) {
     GeState st;
-    // 16 bytes' worth of texels (§6.2).
+    // 16 bytes' worth of texels (ge-rules.md §6.2).
     const std::pair<GeTexFormat, u32> expect[] = {{GE_TFMT_5650, 8}, {GE_TFMT_8888, 4}, {GE_TFMT_CLUT4, 32},
                                                   {GE_TFMT_CLUT8, 16}, {GE_TFMT_CLUT16, 8}, {GE_TFMT_CLUT32, 4},
                                                   {GE_TFMT_DXT1, 8}, {GE_TFMT_DXT3, 4}, {GE_TFMT_DXT5, 4}};
@@ -112,7 +113,7 @@ TEST(TextureDecode, LevelBytes) {
     EXPECT_EQ(textureLevelBytes(st, 0), 512u);
 }
 
-// ---- CLUT (§6.4) ----
+// ---- CLUT (ge-rules.md §6.4) ----
 
 TEST(TextureDecode, ClutLookupShiftMaskStart) {
     GeState st;
@@ -204,13 +205,13 @@ TEST(TextureDecode, MultiClutOffsetsClut4Levels) {
     EXPECT_EQ(clutLookup(st, 3, 5), decode4444(0x73));
     set(st, GE_CMD_TMODE, 0);  // shared CLUT
     EXPECT_EQ(clutLookup(st, 3, 5), decode4444(0x23));
-    // CLUT8: no per-level offset (PPSSPP's choice; manual says +256 entries — ref §9 #2).
+    // CLUT8: no per-level offset (PPSSPP's choice; manual says +256 entries — ge-rules.md §6.4).
     set(st, GE_CMD_TMODE, 1 << 8);
     set(st, GE_CMD_TPF, GE_TFMT_CLUT8);
     EXPECT_EQ(clutLookup(st, 3, 1), decode4444(0x23));
 }
 
-// ---- DXT (§6.5) ----
+// ---- DXT (ge-rules.md §6.5) ----
 
 void dxtColorBlock(u8* b, u8 idxRow0, u16 c0, u16 c1) {
     b[0] = idxRow0;
@@ -310,7 +311,7 @@ TEST(TextureDecode, DxtLevelBlocksInRowsOfBufwOver4) {
     EXPECT_EQ(out[3], rgba(0xF8, 0, 0, 255));
 }
 
-// ---- Swizzle (§6.3) ----
+// ---- Swizzle (ge-rules.md §6.3) ----
 
 TEST(TextureDecode, SwizzleOffsetExample) {
     // Manual Figure 13-7: 32-bit 16x16, P = 64; texel (5, 2) → xb = 20 → offset 164.
@@ -339,7 +340,7 @@ TEST(TextureDecode, Swizzled8888MatchesLinear) {
     for (u32 y = 0; y < 16; ++y)
         for (u32 x = 0; x < 16; ++x) writeLE32(&lin[y * 64 + x * 4], 0xFF000000u | y << 8 | x);
     storeSwizzled(mem, kTex, lin, 64, 16);
-    EXPECT_EQ(mem.read32(kTex + 164), 0xFF000205u);  // texel (5, 2) where §6.3 says
+    EXPECT_EQ(mem.read32(kTex + 164), 0xFF000205u);  // texel (5, 2) where ge-rules.md §6.3 says
     std::vector<u32> out;
     ASSERT_TRUE(decodeTextureLevel(mem, st, 0, out));
     for (u32 y = 0; y < 16; ++y)

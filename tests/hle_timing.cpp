@@ -1,4 +1,5 @@
-// The GE-time estimate (hle/ge_time.h, docs/timing.md; issue 14): lists with known command,
+// SPDX-License-Identifier: MIT
+// The GE-time estimate (hle/ge_time.h, docs/timing.md): lists with known command,
 // vertex and transfer counts cost what the model says, part by part; the sceGe layer charges each
 // list its own time and stamps interrupts with the time they occur; a run to a tick stops between
 // commands at that tick.

@@ -1,4 +1,5 @@
-// Block transfers (ge-reference §3.11). The overlap expectations are pspautotests'
+// SPDX-License-Identifier: MIT
+// Block transfers (docs/ge-rules.md §3.11). The overlap expectations are pspautotests'
 // gpu/transfer/overlap.expected, recorded on a PSP.
 #include <gtest/gtest.h>
 

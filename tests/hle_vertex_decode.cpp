@@ -1,5 +1,6 @@
-// Vertex decoding (manual §6, §7; ge-reference §5). Expected values computed by hand from the
-// component tables of §5.2–§5.5.
+// SPDX-License-Identifier: MIT
+// Vertex decoding (manual §6, §7; docs/ge-rules.md §5). Expected values computed by hand from the
+// component tables of ge-rules.md §5.2–§5.5.
 #include <gtest/gtest.h>
 
 #include "hle/vertex_decoder.h"
@@ -18,7 +19,7 @@ void writeF(Memory& mem, u32 addr, float f) {
     mem.write32(addr, bits);
 }
 
-// VTYPE builders (SDK macro layout, §5.1).
+// VTYPE builders (SDK macro layout, ge-rules.md §5.1).
 constexpr u32 TT(u32 v) { return v; }
 constexpr u32 CT(u32 v) { return v << 2; }
 constexpr u32 NT(u32 v) { return v << 5; }
@@ -251,7 +252,7 @@ TEST(VertexDecode, SkinningWithTwoBones) {
     Memory mem;
     GeState st;
     // Bone 0: identity + translation (1, 0, 0). Bone 1: uniform scale 2.
-    // Element k is row k%3, column k/3; column 3 is the translation (§3.4).
+    // Element k is row k%3, column k/3; column 3 is the translation (ge-rules.md §3.4).
     float* b0 = st.bone;
     float* b1 = st.bone + 12;
     b0[0] = b0[4] = b0[8] = 1.0f;

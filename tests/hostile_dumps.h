@@ -1,4 +1,5 @@
-// Small hostile dumps written with the project's own DumpWriter (issue 12): each asks for far
+// SPDX-License-Identifier: MIT
+// Small hostile dumps written with the project's own DumpWriter: each asks for far
 // more work than a frame, or for work without end. Shared by the replay-budget tests and by
 // write_hostile_dumps, which writes them as files for scripts/check_dumps.sh.
 #pragma once
@@ -41,7 +42,7 @@ inline std::vector<u32> frameState() {
 constexpr u32 kThroughColor = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
 
 // A block that draws a full-screen rectangle and jumps back to its own start (the BASE + VADR
-// the vertices queued, since a draw advances the vertex pointer, §4.6): each catch-up runs until
+// the vertices queued, since a draw advances the vertex pointer, docs/ge-rules.md §4.6): each catch-up runs until
 // its command budget, the next starts over.
 inline dump::Dump rectangleLoop() {
     dump::DumpWriter w = start();

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LeakSanitizer suppressions for the test binaries (and the sanitizer build of the ge2gl CLI): Mesa's OSMesa/llvmpipe/EGL keep a few process-lifetime
 // allocations (driver screens, LLVM state) that are never freed; they are not ge2gl leaks.
 // Compiled into every test binary (GL backends appear in test_gl, test_api and the tools tests);

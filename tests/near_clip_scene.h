@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // A triangle with one vertex behind the camera (w < 0) that still passes CLE = 0's discard rule
-// (|z/w| < 1, screen X/Y/Z in range): near clipping happens whatever CLE says (ge-reference §8.5,
-// corrected; PPSSPP Clipper::ProcessTriangle), so both CLE values draw the clipped quadrilateral,
+// (|z/w| < 1, screen X/Y/Z in range): near clipping happens whatever CLE says (docs/ge-rules.md §8.5;
+// PPSSPP Clipper::ProcessTriangle), so both CLE values draw the clipped quadrilateral,
 // never the inverted triangle the unclipped vertex projects to. Shared by the software-model and
 // GL tests.
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scenes for the reference renderer's state optimizations that change pixels (geometry/reference_rules.h),
 // shared by the software-model and GL tests.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper (tests/api_savestate.cpp, accuracy_savestate.cpp): a dump replayed through the C ABI
 // the way an emulator drives the GE (memory writes, enqueue, stall updates, runs), with the state
 // saved every `every` executed commands (with guest memory) and loaded into a fresh instance of

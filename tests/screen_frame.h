@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The full PSP screen as the scene headers draw it: a 512-stride 8888 frame at VRAM offset 0
 // (depth at 0x88000), scissor and region over 480x272, the screen offset and viewport that map
 // clip (−1..1, 1..−1) onto those pixels, and sceGuDepthRange(65535, 0). Shared by

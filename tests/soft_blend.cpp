@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // Pixel side of the software model, back end of the pipeline: blending (every equation and factor
 // code), dithering + clamp + truncation per format, logic ops, PMSK masks, clear mode.
-// Expected values are computed by hand from ge-reference.md §3.10 and §8.3/§8.4/§8.7/§8.8.
+// Expected values are computed by hand from docs/ge-rules.md §3.10 and §8.3/§8.4/§8.7/§8.8.
 #include <gtest/gtest.h>
 
 #include "geometry/reference_rules.h"
@@ -16,7 +17,7 @@ using ge::soft::testing::rgba;
 
 namespace {
 
-// The SDK's default dither matrix (ref §3.10): rows (−4, 0, −3, 1), (2, −2, 3, −1), (−3, 1, −4, 0),
+// The SDK's default dither matrix (ge-rules.md §3.10): rows (−4, 0, −3, 1), (2, −2, 3, −1), (−3, 1, −4, 0),
 // (3, −1, 2, −2), one signed nibble per column.
 void setSdkDither(PixelRig& rig) {
     rig.set(GE_CMD_DTTH1, 0x1D0C);
@@ -34,7 +35,7 @@ void checkFbHelpers() {
         ASSERT_EQ(u32(c.g), (ref >> 8) & 255) << std::hex << v;
         ASSERT_EQ(u32(c.b), (ref >> 16) & 255) << std::hex << v;
         if (F != GE_FORMAT_565) {
-            ASSERT_EQ(u32(c.a), ref >> 24) << std::hex << v;  // 5650: Ad = 0 (§8.8)
+            ASSERT_EQ(u32(c.a), ref >> 24) << std::hex << v;  // 5650: Ad = 0 (ge-rules.md §8.8)
         }
     }
     for (u32 i = 0; i < 0x10000; ++i) {
@@ -57,7 +58,7 @@ TEST(SoftFramebuffer, InlineHelpersMatchPixelFormat) {
 }
 
 // Cs = (200, 30, 90), As varies; Cd = (100, 50, 200), Ad = 64; FIXA = (10, 20, 30),
-// FIXB = (40, 50, 60). term = ((2C + 1)(2F + 1)) >> 10 (§8.3), results clamped at the end.
+// FIXB = (40, 50, 60). term = ((2C + 1)(2F + 1)) >> 10 (ge-rules.md §8.3), results clamped at the end.
 struct BlendCase {
     u32 eq, a, b, as;
     u32 r, g, b2;
@@ -96,7 +97,7 @@ TEST(SoftBlend, EveryEquationAndFactor) {
         rig.set(GE_CMD_FIXB, 40 | 50 << 8 | 60 << 16);
         rig.setPixel(3, 2, rgba(100, 50, 200, 64));
         rig.draw(PixelRig::frag(3, 2, 200, 30, 90, u8(c.as)));
-        // Blending never produces alpha; without a stencil test the alpha byte is unchanged (§8.7).
+        // Blending never produces alpha; without a stencil test the alpha byte is unchanged (ge-rules.md §8.7).
         EXPECT_EQ(rig.pixel(3, 2), rgba(c.r, c.g, c.b2, 64));
     }
 }
@@ -326,7 +327,7 @@ TEST(SoftClear, DitherMasksAndDepthRangeStillApply) {
     rig.set(GE_CMD_MAXZ, 200);
     rig.setPixel(1, 1, 0x12345678);
     rig.setPixel(0, 0, 0x12345678);
-    // Not through mode: z = 50 fails the depth range test even in clear mode (§8.4).
+    // Not through mode: z = 50 fails the depth range test even in clear mode (ge-rules.md §8.4).
     rig.draw({PixelRig::frag(1, 1, 0x40, 0x40, 0x40, 0xAB, 150), PixelRig::frag(0, 0, 0x40, 0x40, 0x40, 0xAB, 50)});
     // (1, 1): dither −2 → 0x3E; B kept 0x34; alpha (0x12 & 0xF0) | (0xAB & 0x0F) = 0x1B.
     EXPECT_EQ(rig.pixel(1, 1), 0x1B343E3Eu);

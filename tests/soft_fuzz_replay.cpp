@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Corrupted dumps (wild vertex types, texture sizes, buffer addresses, counts, flow control)
 // replayed through the software model: never a crash, hang or out-of-bounds access (this runs
 // under ASan/UBSan in CI).

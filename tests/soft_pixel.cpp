@@ -1,7 +1,8 @@
+// SPDX-License-Identifier: MIT
 // Pixel side of the software model, front of the pipeline: texture functions (with doubling and
 // secondary colour), fog, the depth-range/alpha/colour/stencil/depth tests, every stencil op per
-// format, and the stage order of ge-reference.md §8.4. Expected values are computed by hand from
-// §8.3 and §8.7.
+// format, and the stage order of docs/ge-rules.md §8.4. Expected values are computed by hand from
+// ge-rules.md §8.3 and §8.7.
 #include <gtest/gtest.h>
 
 #include <thread>
@@ -44,7 +45,7 @@ u32 drawWithAlphaTest(PixelRig& rig, const geo::Fragment& f, u32 func, u32 alpha
 }  // namespace
 
 // P = (100, 150, 250, 60) [second block: (10, 20, 30, 60)], T = (200, 100, 50, 128),
-// TEC = (10, 20, 255). Cv from §8.3: MODULATE (P+1)·T >> 8, DECAL/BLEND as listed, doubling
+// TEC = (10, 20, 255). Cv from ge-rules.md §8.3: MODULATE (P+1)·T >> 8, DECAL/BLEND as listed, doubling
 // inside the function; RGB clamped after. The alpha is observed through the alpha test.
 struct TexFuncCase {
     u32 func;
@@ -114,7 +115,7 @@ TEST(SoftTexFunc, SecondaryColourAddedAfterFunctionAndNotDoubled) {
 
 TEST(SoftTexFunc, UntexturedIsPrimaryPlusSecondaryAndNeverDoubled) {
     PixelRig rig;
-    rig.set(GE_CMD_TFUNC, 1u << 16);  // doubling has no effect without texturing (§8.13)
+    rig.set(GE_CMD_TFUNC, 1u << 16);  // doubling has no effect without texturing (ge-rules.md §8.13)
     geo::Fragment f = PixelRig::frag(0, 0, 250, 10, 0, 9);
     f.secondary[0] = 10;
     f.secondary[1] = 5;
@@ -206,7 +207,7 @@ TEST(SoftTests, ColourTestEveryFunction) {
 
 TEST(SoftTests, StencilTestEveryFunction) {
     // Stored stencil 100 (8888 alpha byte); test is (ref & mask) OP (stored & mask) with the refs
-    // 99, 100, 101 — so LESS passes for ref 99 (ref < stored, the emulators' order, §8.7).
+    // 99, 100, 101 — so LESS passes for ref 99 (ref < stored, the emulators' order, ge-rules.md §8.7).
     for (u32 func = 0; func < 8; ++func)
         for (int k = 0; k < 3; ++k) {
             PixelRig rig;
@@ -267,7 +268,7 @@ TEST(SoftTests, DepthRangeOutsideThroughModeOnly) {
     EXPECT_EQ(rig.pixel(0, 0), rgba(1, 2, 3, 0x5A));
 }
 
-// ---- Stencil operations per format (§8.7) ----
+// ---- Stencil operations per format (ge-rules.md §8.7) ----
 
 enum class Path { SFail, ZFail, ZPass };
 
@@ -352,7 +353,7 @@ TEST(SoftStencil, DepthTestOffMeansZPass) {
     EXPECT_EQ(rig.pixel(0, 0), 0x11030201u);
 }
 
-// ---- Stage order (§8.4) ----
+// ---- Stage order (ge-rules.md §8.4) ----
 
 TEST(SoftOrder, AlphaTestBeforeStencilOps) {
     // Alpha test fails → no SFAIL/ZPASS op runs.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A small rig for the pixel-side tests (tests/soft_pixel.cpp, soft_sampler.cpp, soft_blend.cpp):
 // a Memory with the frame buffer at 0x04000000 (stride 512) and the depth buffer at 0x04110000,
 // a GeState built through its register words, and helpers to draw single fragments through

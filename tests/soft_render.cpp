@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // End-to-end tests of the software renderer: display lists built with ListBuilder, executed by
-// GeEngine, drawn by SoftRenderer into emulated VRAM. Checks coverage, culling sense (§3.6),
-// PRIM type 7 continuation (§3.2), near clipping (§8.5), immediate vertices (§3.12), render to
+// GeEngine, drawn by SoftRenderer into emulated VRAM. Checks coverage, culling sense (docs/ge-rules.md §3.6),
+// PRIM type 7 continuation (ge-rules.md §3.2), near clipping (ge-rules.md §8.5), immediate vertices (ge-rules.md §3.12), render to
 // texture ordering and thread-count independence of the output.
 #include <gtest/gtest.h>
 
@@ -57,7 +58,7 @@ struct Scene {
         return std::vector<u8>(v, v + Memory::kVramSize);
     }
     static u32 pixel(const std::vector<u8>& vram, u32 fb, int x, int y) {
-        // RGB only: without a stencil test drawing keeps the alpha (stencil) bits (§8.7).
+        // RGB only: without a stencil test drawing keeps the alpha (stencil) bits (ge-rules.md §8.7).
         return readLE32(&vram[(fb - Memory::kVramBase) + (u32(y) * kStride + u32(x)) * 4]) & 0xFFFFFF;
     }
     // Through-mode vertices: 8888 colour, 16-bit position.
@@ -132,7 +133,7 @@ TEST(SoftRender, CullingSense) {
         auto vram = s.run(1);
         return Scene::pixel(vram, kFb, 15, 15) == 0xFFFFFFu;
     };
-    // CULL = 0 culls clockwise triangles, CULL = 1 counter-clockwise ones (§3.6).
+    // CULL = 0 culls clockwise triangles, CULL = 1 counter-clockwise ones (ge-rules.md §3.6).
     EXPECT_FALSE(draw(true, false, true));
     EXPECT_TRUE(draw(true, false, false));
     EXPECT_TRUE(draw(true, true, true));
@@ -284,7 +285,7 @@ TEST(SoftRender, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
 
 TEST(SoftRender, ImmediateVertices) {
     Scene s;
-    // Through mode for the immediate vertices: X2/Y2 = (x << 4) + 0x8000 (ge-reference §3.12).
+    // Through mode for the immediate vertices: X2/Y2 = (x << 4) + 0x8000 (ge-rules.md §3.12).
     s.b.setVertexType(vt::THROUGH);
     auto vertex = [&](int x, int y, u32 rgb, u32 ap2) {
         s.b.cmd(GE_CMD_X2, u32(x * 16 + 0x8000));

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // Texture sampling of the software model: nearest vs bilinear, repeat vs clamp, sizes above 512,
 // level-of-detail and mip level choice, and the decoded-texture cache's invalidation rules.
-// Expected values are computed by hand from ge-reference.md §6.6 and §8.10.
+// Expected values are computed by hand from docs/ge-rules.md §6.6 and §8.10.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The project's own scenes (dumps/*.ppdmp) rendered by the software model must match the checked-in
 // expected images (dumps/expected/NAME-soft.png) pixel for pixel: the model is bit-exact and
 // deterministic. After an intended change of the model, regenerate the images with

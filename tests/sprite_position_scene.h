@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sprites (RECTANGLES) as a PSP draws them, not as the reference renderer does (docs/conformance.md
 // "Sprites"): in transform mode the viewport arithmetic is float24 and the screen position rounds up
 // to the next 1/16 pixel before OFFSETX/Y is taken off (geometry/transform.cpp projectToScreen); in
@@ -32,7 +33,7 @@ inline void spritePositionScene(ListBuilder& b) {
     b.enable(GE_CMD_BCE, false);
     b.enable(GE_CMD_TME, true);
     b.texMode(GE_TFMT_8888, 0, false);
-    b.texFunc(3, true);  // REPLACE, RGBA (manual §6.7)
+    b.texFunc(3, true);  // REPLACE, RGBA (manual §13.13)
     b.texWrap(false, false);
     b.texScale(1.0f, 1.0f);
     b.texOffset(0.0f, 0.0f);
@@ -74,7 +75,7 @@ inline void spritePositionScene(ListBuilder& b) {
     // product −28107.5 plus the centre (depth/precision, "1234 >= 1234" passes; in single
     // precision 4659.93, truncated to 4659, it fails and the sprite is not drawn).
     b.enable(GE_CMD_ZTE, true);
-    b.depthFunc(7);  // GEQUAL (manual §8.7)
+    b.depthFunc(7);  // GEQUAL (manual §17.6)
     sprite(4, columnTex, false, 0, 0, 1.0f, 0, float(0x6DCC) / 32768.0f);
     b.enable(GE_CMD_ZTE, false);
     // 5: a through-mode sprite from x 40 to 41.5: the far edge is pixel 41's centre and the PSP

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small helpers shared by test files.
 #pragma once
 #include <algorithm>

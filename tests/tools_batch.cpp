@@ -1,4 +1,5 @@
-// Accuracy tools (issue 15) in the ge2gl CLI: --skip / --only draw selection (tools/lib/draw_select.h
+// SPDX-License-Identifier: MIT
+// Accuracy tools in the ge2gl CLI: --skip / --only draw selection (tools/lib/draw_select.h
 // through the DrawHook in tools::renderDump), compare --shard i/n and ge2gl merge
 // (tools/lib/batch.h), and the JSON they exchange.
 #include <gtest/gtest.h>

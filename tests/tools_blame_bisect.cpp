@@ -1,4 +1,5 @@
-// `ge2gl blame` and `ge2gl bisect` (issue 15, accuracy tools), driven through the CLI on dumps
+// SPDX-License-Identifier: MIT
+// `ge2gl blame` and `ge2gl bisect` (accuracy tools), driven through the CLI on dumps
 // made here with ListBuilder + DumpRecorder (one injected change each) and on a shared frametest
 // with one command word changed.
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ge2gl CLI as users and scripts drive it: outputs, file formats, exit codes, error lines.
 #include <gtest/gtest.h>
 
@@ -185,7 +186,7 @@ TEST(Cli, ErrorsAreOneLineAndNonZero) {
     fs::remove_all(t);
 }
 
-// Issue 12: numeric arguments are range-checked (no wrap-around), errors name the file once and
+// Numeric arguments are range-checked (no wrap-around), errors name the file once and
 // say why (errno text for I/O).
 TEST(Cli, NumbersAreRangeCheckedAndErrorsSayWhy) {
     fs::path t = tmpDir();

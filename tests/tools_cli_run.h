@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Test helper: runs the ge2gl CLI of this build, or any command line, and collects its output
 // (the tools tests and the API example-host tests).
 #pragma once

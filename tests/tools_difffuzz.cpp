@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl fuzz` (tools/lib/difffuzz.h): cases are deterministic, a bounded run reports its counts,
 // the minimiser shrinks a forced divergence (the reference side skips a draw) to a smaller dump
 // that still diverges, and the written .ppdmp loads and replays with `ge2gl render`.

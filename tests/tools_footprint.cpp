@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // What a process that does not draw with GL carries: the GL stack (libOSMesa, libEGL and the
 // libLLVM behind llvmpipe, ~60 MiB and ~0.1 s to map) is dlopen()ed by translator/gl_context.cpp
-// only when a GL context is created (issue 10), so rendering with the software model, in this
+// only when a GL context is created, so rendering with the software model, in this
 // process or through the CLI, must not map it.
 #include <gtest/gtest.h>
 

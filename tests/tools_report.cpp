@@ -1,4 +1,5 @@
-// `ge2gl report` (tools/lib/report.h, issue 15): the page lists every dump of a compare run with
+// SPDX-License-Identifier: MIT
+// `ge2gl report` (tools/lib/report.h): the page lists every dump of a compare run with
 // its pictures and blame table, compares two runs, and renders in headless Chromium (the browser
 // test: images loaded, sorting, a screenshot with the pictures on it).
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// `ge2gl step` (tools/lib/step.h, the GE debugger's CLI; issue 14): the frame buffer right after
+// SPDX-License-Identifier: MIT
+// `ge2gl step` (tools/lib/step.h, the GE debugger's CLI): the frame buffer right after
 // draw N is the frame `render --replay-end N` gives, for every draw of the five scenes; the
 // read-outs at a break hold what the scene put there; the command line prints the state and writes
 // the buffers.

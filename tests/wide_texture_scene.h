@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Textures past 512 texels (geometry/texture_size.h): a 1024-wide row and a 1024-high column
 // (TSIZE exponent 10; the GE keeps 512 texels) drawn over 64 pixels, in through mode and in
 // transform mode. Coordinates scale by the full 1024 and the texel index stops at 511 (or wraps

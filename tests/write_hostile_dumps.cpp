@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // Writes the hostile dumps of tests/hostile_dumps.h into a folder, for scripts/check_dumps.sh
-// (issue 12: every dump of at most 1 MiB ends cleanly within 10 s and 1 GiB with either backend).
+// (every dump of at most 1 MiB must end cleanly within 10 s and 1 GiB with either backend).
 #include <cstdio>
 #include <filesystem>
 #include <string>

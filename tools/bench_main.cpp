@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Google Benchmark suite: replay time per dump and backend. Speed targets live here, not in tests.
 //   ./build/ge2gl_bench [--benchmark_filter=soft] — dumps from ../shared/frametests and dumps/.
 #include <benchmark/benchmark.h>
@@ -51,7 +52,7 @@ void registerDir(const fs::path& dir, const char* ext) {
 }
 
 #ifdef GE2GL_LOAD_PROBE
-// A host loading libge2gl without asking for a headless GL context (issue 11: at most 20 ms, and no
+// A host loading libge2gl without asking for a headless GL context (the target: at most 20 ms, and no
 // OSMesa/EGL/LLVM mapped): ge2gl_load_probe in a fresh process per iteration; the counter
 // load_ms is the probe's own dlopen + create + destroy time, real time includes the spawn.
 void libraryLoadBench(benchmark::State& state) {

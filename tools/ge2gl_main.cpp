@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ge2gl command-line tool: info, disasm, render, compare, merge, report, bench, blame, bisect, fuzz.
 // Errors are one line on stderr and a non-zero exit.
 #include <CLI/CLI.hpp>
@@ -357,7 +358,7 @@ int main(int argc, char** argv) {
     addBackendOpts(bench);
     addDrawSelectOpts(bench);
 
-    // blame and bisect (issue 15): tools/lib/blame.h, tools/lib/bisect.h.
+    // blame and bisect: tools/lib/blame.h, tools/lib/bisect.h.
     std::string blameFile;
     tools::BlameOptions blameOpt;
     auto* blame = app.add_subcommand("blame", "which draws own the pixels that differ from a reference, ranked by "

@@ -1,6 +1,7 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ge2gl_load_probe: what loading libge2gl costs a host that does not ask for a headless GL
- * context (issue 11). In a fresh process: dlopen the library, create and destroy a software-backend
+ * context. In a fresh process: dlopen the library, create and destroy a software-backend
  * context, then look at /proc/self/maps. Prints one line:
  *   load_probe: load_ms=<dlopen+create+destroy> osmesa=<0|1> egl=<0|1> llvm=<0|1>
  * Used by test_api (ApiFootprint) and ge2gl_bench (LibraryLoad). Exit 0 when it ran.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // make_scenes: writes the project's own GE frame dumps (dumps/*.ppdmp) from scene descriptions
 // built with ge::ListBuilder. Every scene draws a 480×272 frame into the 8888 frame buffer at
 // VRAM 0x04000000 (stride 512); all data (vertices, textures, palettes) is generated here, so the
@@ -86,7 +87,7 @@ Mat4 rotZ(float a) {
     r.m[5] = c;
     return r;
 }
-// OpenGL-style perspective: clip z in [−w, w] between near and far (ge-reference.md §8.5).
+// OpenGL-style perspective: clip z in [−w, w] between near and far (docs/ge-rules.md §8.5).
 Mat4 perspective(float fovyDeg, float aspect, float n, float f) {
     Mat4 r{};
     float t = 1.f / std::tan(fovyDeg * 3.14159265f / 360.f);
@@ -142,7 +143,7 @@ u16 to5551(u32 c) {
 u16 to4444(u32 c) {
     return u16(((c & 255) >> 4) | (((c >> 8) & 255) >> 4) << 4 | (((c >> 16) & 255) >> 4) << 8 | ((c >> 28) << 12));
 }
-// Standard 565 as used by DXT endpoints (red in bits 15..11, ge-reference.md §6.5).
+// Standard 565 as used by DXT endpoints (red in bits 15..11, ge-rules.md §6.5).
 u16 dxt565(u32 r, u32 g, u32 b) { return u16((r >> 3) << 11 | (g >> 2) << 5 | (b >> 3)); }
 
 // A hue wheel colour for i in 0..n-1.
@@ -173,7 +174,7 @@ std::vector<u8> bytes16(const std::vector<u16>& px) {
 }
 
 // Swizzles a linear texture (pitch in bytes, rows) into the GE's 16-byte × 8-row blocks
-// (ge-reference.md §6.3).
+// (ge-rules.md §6.3).
 std::vector<u8> swizzle(const std::vector<u8>& lin, u32 pitch, u32 rows) {
     std::vector<u8> out(lin.size(), 0);
     const u32 blocksPerRow = pitch / 16;
@@ -225,7 +226,7 @@ std::vector<u32> halve(const std::vector<u32>& src, u32 w, u32 h) {
     return out;
 }
 
-// PSP-order DXT blocks (ge-reference.md §6.5), generated directly: endpoints from the block
+// PSP-order DXT blocks (ge-rules.md §6.5), generated directly: endpoints from the block
 // position, 2-bit indices from the texel position.
 std::vector<u8> makeDxt(u32 fmt, u32 w, u32 h, bool punchThrough) {
     const u32 bw = w / 4, bh = h / 4, blockBytes = fmt == GE_TFMT_DXT1 ? 8 : 16;
@@ -310,7 +311,7 @@ void standardSetup(ListBuilder& b) {
     b.setMatrix(GeMatrix::TexGen, id.m);
 }
 
-// Axis-aligned through-mode rectangle with a flat colour (second vertex's colour, §8.1).
+// Axis-aligned through-mode rectangle with a flat colour (second vertex's colour, ge-rules.md §8.1).
 void rect(ListBuilder& b, int x, int y, int w, int h, u32 color) {
     BuildVertex v[2];
     v[0].x = float(x);
@@ -652,7 +653,7 @@ void sceneClutDxtSprites(ListBuilder& b) {
     b.setTexture(0, t4Addr, 32, 32, 32);
     b.texFilter(0, 0);
     texRect(b, cx(0), cy(0), cell, cell, 0, 0, 32, 32);
-    // c1: CLUT4, 4444 palette, start 1 (entries 16–31 OR-ed in, §6.4), bilinear, swizzled.
+    // c1: CLUT4, 4444 palette, start 1 (entries 16–31 OR-ed in, ge-rules.md §6.4), bilinear, swizzled.
     b.clutMode(GE_FORMAT_4444, 0, 0x0F, 1);
     b.clutLoad(palB, 2);
     b.texMode(GE_TFMT_CLUT4, 0, true);
@@ -924,12 +925,12 @@ void sceneBlendStencilLogic(ListBuilder& b) {
     b.drawBuffer(GE_FORMAT_4444, kOff0, 128);
     b.scissor(0, 0, 128, 128);
     b.clear(CLEAR_COLOR | CLEAR_STENCIL, rgba(30, 30, 30), 0, 0x00);
-    // Dithered gradient across the whole buffer (16-bit truncation after dithering, §8.8).
+    // Dithered gradient across the whole buffer (16-bit truncation after dithering, ge-rules.md §8.8).
     b.enable(GE_CMD_DTE, true);
     gradQuad(b, 0, 0, 128, 128, rgba(0, 0, 0), rgba(255, 64, 0), rgba(0, 128, 255), rgba(255, 255, 255));
     b.enable(GE_CMD_DTE, false);
     // Stencil: write 0x30 inside a diamond, then INCR in an overlapping square, then draw a
-    // colour where stencil == 0x40 (INCR on 4444 adds 0x10, §8.7) and another where it is 0x30.
+    // colour where stencil == 0x40 (INCR on 4444 adds 0x10, ge-rules.md §8.7) and another where it is 0x30.
     b.enable(GE_CMD_STE, true);
     b.pixelMask(0xFFFFFF, 0);  // keep RGB while writing stencil
     b.stencilFunc(1, 0x30);   // ALWAYS
@@ -970,7 +971,7 @@ void sceneBlendStencilLogic(ListBuilder& b) {
         u32 c = hue(u32(i), 8);
         gradQuad(b, i * 60, 0, 60, 272, c & 0xFFFFFF, c & 0xFFFFFF, c | 0xFF000000, c | 0xFF000000);
     }
-    // The gradients above wrote no alpha (no stencil test, §8.7): set the frame-buffer alpha
+    // The gradients above wrote no alpha (no stencil test, ge-rules.md §8.7): set the frame-buffer alpha
     // (= stencil) to 0xC0 everywhere through a clear that writes alpha only.
     b.clear(CLEAR_STENCIL, 0, 0, 0xC0);
 

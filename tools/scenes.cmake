@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # make_scenes: writes the project's own frame dumps (dumps/*.ppdmp) from scene descriptions built
 # with ge::ListBuilder (docs/scenes.md). Include from tools/CMakeLists.txt:
 #   include(${CMAKE_CURRENT_SOURCE_DIR}/scenes.cmake)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Render targets as caches of VRAM (see framebuffer_manager.h).
 #include "translator/framebuffer_manager.h"
 
@@ -307,7 +308,7 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
             if (t.fmt == GE_FORMAT_8888) {
                 for (u32 x = 0; x < avail; ++x) dst[x] = readLE32(src + 4 * x);
             } else {
-                // Stored form = what a GE read expands to (bit replication, ref §8.8).
+                // Stored form = what a GE read expands to (bit replication, docs/ge-rules.md §8.8).
                 for (u32 x = 0; x < avail; ++x) dst[x] = decodePixel16(readLE16(src + 2 * x), t.fmt);
             }
         }
@@ -514,7 +515,7 @@ void FramebufferManager::writeBack(Target& t) {
             if (t.fmt == GE_FORMAT_8888) {
                 for (u32 x = 0; x < avail; ++x) writeLE32(dst + 4 * x, src[x]);
             } else {
-                // Truncation keeps the stored high bits exactly (ref §8.8).
+                // Truncation keeps the stored high bits exactly (ge-rules.md §8.8).
                 for (u32 x = 0; x < avail; ++x) writeLE16(dst + 2 * x, encodePixel16(src[x], t.fmt));
             }
         }

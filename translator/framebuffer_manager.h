@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Render targets as caches of emulated VRAM (style-anchors §8.7: VRAM is the source of truth).
 //
 // A colour target is (VRAM address, stride, format) ↔ an RGBA8UI texture whose row y is drawing
@@ -69,7 +70,7 @@ struct Target {
     u32 end() const { return addr + u32(rowsValid) * stride * bpp(); }
 };
 
-// Linear VRAM address for any of the four mirrors (drawing treats them as the same bytes, §7.3).
+// Linear VRAM address for any of the four mirrors (drawing treats them as the same bytes, docs/ge-rules.md §7.3).
 u32 vramLinear(u32 addr);
 
 class FramebufferManager {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Context creation and capability detection (see gl_context.h).
 //
 // libOSMesa and libEGL are not linked: they (and libLLVM behind llvmpipe, ~60 MiB mapped and

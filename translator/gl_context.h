@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Headless GL context creation (OSMesa core profile, EGL surfaceless) or adoption of the host's
 // current context, plus capability detection. One GlContext per renderer; the GL function table
 // lives here (no globals).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL entry points the translator uses, loaded through the context's GetProcAddress into a
 // table owned by the context (no global function pointers: two renderers on two contexts — e.g.
 // OSMesa and EGL, whose libraries both export gl* symbols — never share state).

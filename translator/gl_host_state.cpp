@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Saving and restoring a host's GL state around ge2gl's work (gl_host_state.h).
 #include "translator/gl_host_state.h"
 

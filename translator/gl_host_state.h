@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL state contract with a host that lends its context (plugin API, GE2GL_BACKEND_GL_CURRENT;
 // docs/plugin-api.md "GL state").
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The GL renderer: consumes the engine's packets, keeps VRAM exact (see gl_renderer.h).
 //
 // Per draw: the CPU vertex pipeline produces GL-ready vertices in drawing coordinates; the state
@@ -242,7 +243,7 @@ public:
         ++stats_.draws;
         if (p.vertices.empty()) return;
         const GeState& st = *p.state;
-        // AP2 flag bits 11..23 of the first vertex override the state for this primitive (§3.12).
+        // AP2 flag bits 11..23 of the first vertex override the state for this primitive (docs/ge-rules.md §3.12).
         const u32 f = p.flags;
         shadergen::DrawFlags df = shadergen::DrawFlags::fromState(st);
         df.gouraud = (f >> 18) & 1;
@@ -394,7 +395,7 @@ private:
             s.depthAddr = vramLinear(st.depthbufAddr());
             s.depthStride = st.depthbufStride();
         }
-        // Scissor ∩ REGION2, inclusive (ref §8.6), limited to the buffer width and target size.
+        // Scissor ∩ REGION2, inclusive (ge-rules.md §8.6), limited to the buffer width and target size.
         s.scissor[0] = s32(st.SCISSOR1_x());
         s.scissor[1] = s32(st.SCISSOR1_y());
         s.scissor[2] = std::min({s32(st.SCISSOR2_x()), s32(st.REGION2_x()), s32(s.colorStride) - 1, kTargetSize - 1});

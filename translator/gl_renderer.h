@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ge2gl's OpenGL backend: draws what the PSP's GE draws, on GL 3.3 core, headless (OSMesa by
 // default, EGL surfaceless as an option, or a context the host made current).
 //
@@ -29,8 +30,9 @@ enum class ContextKind { OSMesa, EGL, Current /*host made a context current*/, N
 //        GL 4.0 + int64; float interpolation without), 1× only — the accuracy and CI mode.
 // hw:    GL rasterises natively with interpolated attributes at render scale 1–8 (targets N× the
 //        PSP's pixels; VRAM write-back box-downsampled); the pixel pipeline keeps the exact integer
-//        fragment code (dither indexed by the PSP pixel). Vertex work is still the CPU's (shared
-//        geometry code): GPU vertex shaders are not built yet.
+//        fragment code (dither indexed by the PSP pixel). Vertex work runs on the CPU (shared
+//        geometry code) or, for triangle/strip/fan PRIMs, in a generated vertex shader with a
+//        geometry shader (GlOptions::vertices below, gpu_vertex_path.h).
 enum class GlMode { Exact, Hw };
 
 struct GlOptions {

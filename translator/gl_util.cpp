@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small GL helpers (gl_util.h).
 #include "translator/gl_util.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Small GL helpers the translator's utility passes share (write-back, upload, presenting).
 #pragma once
 #include "translator/gl_funcs.h"

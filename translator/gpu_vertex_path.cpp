@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL hardware mode's GPU vertex path (see gpu_vertex_path.h).
 #include "translator/gpu_vertex_path.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GL hardware mode: PRIM draws whose vertex work runs in the generated vertex shader
 // (shadergen/hw_vertex.h) — the guest's vertex bytes go to the GPU as they are, with the GE's
 // indices rebased to them; transform, skinning, morphing, lighting, texture mapping, fog, the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The null GL dispatch table (null_gl.h).
 #include "translator/null_gl.h"
 

@@ -1,6 +1,7 @@
+// SPDX-License-Identifier: MIT
 // A GL dispatch table whose calls do nothing ("null GL"): `ge2gl bench --null-gl` replays with it
 // so that the translator's own CPU cost per draw (vertex work, setup, batching, state tracking,
-// uniform and buffer calls) is measured apart from the driver's (issue 16).
+// uniform and buffer calls) is measured apart from the driver's.
 #pragma once
 #include "translator/gl_funcs.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Presenting a frame on the GPU (present.h).
 #include "translator/present.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Presenting (plugin API ge2gl_frame_texture): the displayed frame as an RGBA8 GL texture at any
 // size, made on the GPU.
 //

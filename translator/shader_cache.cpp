@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Program cache (see shader_cache.h).
 #include "translator/shader_cache.h"
 

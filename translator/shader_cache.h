@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Program cache: (VsKey, FsKey) → linked GL program with its uniform locations.
 //
 // Invalidation contract: programs never go stale (keys fully determine the source). The optional

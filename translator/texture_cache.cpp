@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Decoded-texture cache (see texture_cache.h).
 #include "translator/texture_cache.h"
 

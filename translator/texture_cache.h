@@ -1,9 +1,10 @@
+// SPDX-License-Identifier: MIT
 // Decoded-texture cache for the GL path.
 //
 // Each entry holds the levels a draw samples, decoded by the shared decoder
 // (hle/texture_decoder.h, CLUT applied, RGBA8888) and stacked vertically in one RGBA8UI "atlas"
 // texture; the fragment shader samples it with texelFetch and does wrap/clamp and filtering
-// itself (exact 4-bit weights, ref §8.10).
+// itself (exact 4-bit weights, docs/ge-rules.md §8.10).
 //
 // Invalidation contract (style-anchors §7.11): an entry is keyed by the texture registers and the
 // palette contents, and validated by a full hash of its source bytes (hashTextureLevel, which

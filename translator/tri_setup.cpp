@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-triangle records for exact interpolation (see tri_setup.h). Every number mirrors
 // geometry/raster.cpp: rasterTriangle's oriented edges and sample offset, attribute order,
 // constant-attribute shortcuts, depth values and weight reciprocal; rasterRectangle's covered

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-triangle records for exact interpolation on the GL path (shadergen/shader_gen.h `tri`
 // layout, HostCaps::exactInterp).
 //

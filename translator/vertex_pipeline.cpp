@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CPU vertex processing for the GL path (see vertex_pipeline.h).
 #include "translator/vertex_pipeline.h"
 
@@ -25,7 +26,7 @@ GlVertex toGl(const geo::ScreenVertex& v, bool perspective) {
     g.color2[0] = v.secondary[0], g.color2[1] = v.secondary[1], g.color2[2] = v.secondary[2];
     g.color2[3] = 0;
     // Texture coordinates are perspective-correct: s/w, t/w, q/w interpolate linearly in screen
-    // space and the fragment shader divides (ref §8.1). Through mode and rectangles have w = 1.
+    // space and the fragment shader divides (docs/ge-rules.md §8.1). Through mode and rectangles have w = 1.
     const float w = perspective && std::isfinite(v.w) && v.w != 0.0f ? v.w : 1.0f;
     const float k = 1.0f / w;
     g.tex[0] = v.s * k, g.tex[1] = v.t * k, g.tex[2] = v.q * k, g.tex[3] = w;
@@ -102,7 +103,7 @@ VertexSettings VertexSettings::fromState(const GeState& st) {
     vs.cullCcw = st.CULL_ccw();
     vs.texture = st.TME_on() && !st.isClearMode();
     vs.fog = st.FGE_on() && !st.isThrough();
-    // Scissor ∩ REGION2 (ref §8.6).
+    // Scissor ∩ REGION2 (ge-rules.md §8.6).
     vs.clip[0] = int(st.SCISSOR1_x());
     vs.clip[1] = int(st.SCISSOR1_y());
     vs.clip[2] = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
@@ -128,7 +129,7 @@ geo::RasterParams VertexPipeline::rasterParams() const {
 bool VertexPipeline::culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
                             const geo::ScreenVertex& c) const {
     // Positive area = clockwise on screen (y down); CULL 0 culls clockwise, 1 counter-clockwise
-    // (ref §3.6). Zero-area triangles are never culled: they draw the samples they pass through,
+    // (ge-rules.md §3.6). Zero-area triangles are never culled: they draw the samples they pass through,
     // as in the software model (see emitTriangle).
     const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
     if (!vs_.cull || area == 0) return false;
@@ -177,7 +178,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
     const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
     for (GlVertex& v : g) v.x += shift, v.y += shift;
     if (!vs_.gouraud) {
-        // Flat shading: the provoking (last) vertex's colours (ref §8.1).
+        // Flat shading: the provoking (last) vertex's colours (ge-rules.md §8.1).
         for (GlVertex& v : g) {
             std::memcpy(v.color, prov.color, 4);
             v.color2[0] = prov.secondary[0], v.color2[1] = prov.secondary[1], v.color2[2] = prov.secondary[2];
@@ -233,8 +234,8 @@ void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVert
     if (!notePrimitive(geo::PrimKind::Rect, v0, v1, v1, v1)) return;
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
-    if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ref §8.11)
-    // Texture orientation from where v0 lies relative to v1 (ref §8.2 table); colour, Z and fog
+    if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ge-rules.md §8.11)
+    // Texture orientation from where v0 lies relative to v1 (ge-rules.md §8.2 table); colour, Z and fog
     // from the second vertex; coordinates linear across the rectangle (w = 1).
     const bool left = v0.x < v1.x, above = v0.y < v1.y;
     auto corner = [&](int fx, int fy) {
@@ -307,7 +308,7 @@ void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
         std::memcpy(g.color, f[i].color, 4);
         g.color2[0] = f[i].secondary[0], g.color2[1] = f[i].secondary[1], g.color2[2] = f[i].secondary[2];
         g.tex[0] = f[i].s, g.tex[1] = f[i].t, g.tex[2] = 1.0f, g.tex[3] = f[i].w;
-        // The byte back from the shader's floor(f·256) (ref §8.9).
+        // The byte back from the shader's floor(f·256) (ge-rules.md §8.9).
         g.fog = (float(f[i].fog) + 0.5f) / 256.0f;
         const float x = float(f[i].x), y = float(f[i].y);
         GlVertex q[6] = {g, g, g, g, g, g};
@@ -337,8 +338,8 @@ void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
     const geo::ClipVertex* v[3] = {&a, &b, &c};
     if (!a.valid || !b.valid || !c.valid || geo::discardPrimitive(ts_, v, 3)) return;
     if (!ts_.through) {
-        if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ref §8.5
-        // Near clipping whatever CLE says, as the software model (ge-reference §8.5).
+        if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ge-rules.md §8.5
+        // Near clipping whatever CLE says, as the software model (ge-rules.md §8.5).
         if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
             // Clipped in the reference's vertex order (the strip/fan ring, geometry/clip.h).
             const bool reversed = ring && geo::ringReversed(ring, ia, ib);
@@ -374,7 +375,7 @@ void VertexPipeline::rectangle(u32 ia, u32 ib) {
 }
 
 void VertexPipeline::rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
-    // Rectangles with texture projection are two triangles (ref §8.2), as in the software model.
+    // Rectangles with texture projection are two triangles (ge-rules.md §8.2), as in the software model.
     if (v0.x == v1.x || v0.y == v1.y) return;
     const geo::ScreenVertex tl = geo::rectangleCorner(v0, v1, 0, 0), tr = geo::rectangleCorner(v0, v1, 1, 0);
     const geo::ScreenVertex bl = geo::rectangleCorner(v0, v1, 0, 1), br = geo::rectangleCorner(v0, v1, 1, 1);
@@ -440,7 +441,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
     VertexReader reader(mem, st, p.vtype);
     ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
     ts_.sprite = p.prim == GE_PRIM_RECTANGLES;
-    // The still-open vertices of the previous PRIM come first (type 7, ref §3.2).
+    // The still-open vertices of the previous PRIM come first (type 7, ge-rules.md §3.2).
     cverts_.assign(pending_.begin(), pending_.end());
     std::vector<u32> indices;
     if (!reader.readIndices(p.indexAddr, p.count, indices)) {
@@ -454,7 +455,7 @@ bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const Pri
         const bool ok = reader.read(p.vertexAddr, index, dv);
         if (ok && skin) applySkinning(st, p.vtype, dv);
         geo::transformVertex(ts_, dv, cv);
-        cv.valid = ok && reader.hasPosition();  // no position: dropped (ref §8.11)
+        cv.valid = ok && reader.hasPosition();  // no position: dropped (ge-rules.md §8.11)
     };
     seq_.clear();
     for (u32 i = 0; i < pending_.size(); ++i) seq_.push_back(i);
@@ -534,7 +535,7 @@ bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const Pa
     if (!geo::tessellatePatch(mem, st, p, tess, err)) return false;
     if (tess.verts.empty()) return true;
     VertexReader reader(mem, st, p.vtype);
-    // The tessellator generates normals when lighting needs them (ref §3.2).
+    // The tessellator generates normals when lighting needs them (ge-rules.md §3.2).
     ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal() || st.LTE_on());
     cverts_.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {

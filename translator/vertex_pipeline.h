@@ -1,14 +1,18 @@
+// SPDX-License-Identifier: MIT
 // CPU vertex processing for the GL path: decode (shared decoder), then the reference transform,
 // lighting, texture-coordinate generation, fog, clipping and discard rules the software model runs
 // too (geometry/transform.h, clip.h), then primitive assembly (geometry/assembly.h) into GL-ready
 // vertices in drawing coordinates.
 //
-// Why on the CPU: the GE rounds screen positions to 1/16 pixel (ref §8.1), drops rather than
-// clips primitives outside the 4096² screen (§8.5), lights in fixed point (§8.3) and decides
-// rectangles' texture orientation from vertex order (§8.2) — none of which a GL vertex shader
-// reproduces exactly. Sharing geometry/ with the software model keeps both backends' geometry
-// identical (style-anchors §8.8: one reference implementation). GL then only rasterises
-// triangles, with positions already on the GE's grid; its fill convention equals the GE's
+// Why on the CPU: the GE rounds screen positions to 1/16 pixel (docs/ge-rules.md §8.1), drops
+// rather than clips primitives outside the 4096² screen (ge-rules.md §8.5), lights in fixed point
+// (ge-rules.md §8.3) and decides rectangles' texture orientation from vertex order
+// (ge-rules.md §8.2) — none of which GL's own vertex processing does. The hardware mode's
+// generated vertex and geometry shaders (shadergen/hw_vertex.h) reproduce the first three for triangle,
+// strip and fan PRIMs sent to the GPU; everything else, and the exact mode, runs this code.
+// Sharing geometry/ with the software model keeps both backends' geometry identical
+// (style-anchors §8.8: one reference implementation). GL then only rasterises triangles, with
+// positions already on the GE's grid; its fill convention equals the GE's
 // top-left rule. Lines and points use the software model's rasteriser, geometry/raster.h (GL line
 // rules differ from the GE's DDA): each of their fragments becomes a one-pixel quad carrying that
 // fragment's exact attributes.
@@ -62,7 +66,7 @@ struct Geometry {
     bool empty() const { return tris.empty(); }
 };
 
-// Per-draw switches (immediate-mode vertices override some, ref §3.12).
+// Per-draw switches (immediate-mode vertices override some, ge-rules.md §3.12).
 struct VertexSettings {
     bool gouraud = true;
     bool cull = false;     // BCE (never in clear mode)
@@ -77,7 +81,7 @@ struct VertexSettings {
 class VertexPipeline {
 public:
     // Decodes and processes a PRIM draw into `out` (appending). Returns false + err on bad
-    // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ref §3.2).
+    // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ge-rules.md §3.2).
     bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
                      Geometry& out, std::string* err);
     // Tessellated patch (geometry/spline.h) through the same path.
@@ -85,9 +89,9 @@ public:
                       Geometry& out, std::string* err);
     // A fresh triangle/strip/fan PRIM drawn elsewhere (the GPU vertex path): keeps what a PRIM
     // type 7 continuation after it needs — its still-open vertices, transformed, and the strip
-    // parity — exactly as processPrim's walk would have left them (ref §3.2).
+    // parity — exactly as processPrim's walk would have left them (ge-rules.md §3.2).
     void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p);
-    // Immediate vertices, already in drawing coordinates (ref §3.12).
+    // Immediate vertices, already in drawing coordinates (ge-rules.md §3.12).
     void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
     // After a process* call: whether every primary colour of its primitives that reaches a
     // fragment has alpha 255 (as the software model counts them: primitives not wholly outside

@@ -1,4 +1,5 @@
-// DumpWriter: see dump_writer.h and ppdmp-format.md §4, §7.
+// SPDX-License-Identifier: MIT
+// DumpWriter: see dump_writer.h and docs/ppdmp.md §4, §7.
 #include "hle/dump/dump_writer.h"
 
 #include <xxhash.h>
@@ -10,7 +11,7 @@ namespace ge::dump {
 
 namespace {
 
-// §3.1 / §7.7 alignment of payload offsets in the push buffer.
+// ppdmp.md §3.1 / §7 rule 7 alignment of payload offsets in the push buffer.
 constexpr u32 kAlignWords = 4;    // REGISTERS, VERTICES, INDICES
 constexpr u32 kAlignData = 16;    // TEXTUREn, FRAMEBUFn, CLUT, TRANSFERSRC
 constexpr u32 kAlignNone = 1;     // small fixed records, MEMCPYDATA
@@ -27,7 +28,7 @@ void checkData(const void* data, u32 size) {
 
 DumpWriter::DumpWriter(std::string gameId) {
     m_dump.version = kWriteVersion;
-    if (gameId.size() > kGameIdBytes) gameId.resize(kGameIdBytes);  // §2: 9 bytes in the header
+    if (gameId.size() > kGameIdBytes) gameId.resize(kGameIdBytes);  // ppdmp.md §2: 9 bytes in the header
     m_dump.gameId = std::move(gameId);
 }
 
@@ -79,7 +80,7 @@ void DumpWriter::registers(const std::vector<u32>& words) {
     if (words.empty()) return;
     std::vector<u8> bytes(words.size() * 4);
     for (size_t i = 0; i < words.size(); ++i) writeLE32(bytes.data() + i * 4, words[i]);
-    // A REGISTERS block runs until the next data record (§4), so back-to-back calls extend the
+    // A REGISTERS block runs until the next data record (ppdmp.md §4), so back-to-back calls extend the
     // previous block. Register blocks are never shared, so the last one ends the push buffer.
     if (!m_dump.records.empty()) {
         Record& last = m_dump.records.back();
@@ -108,7 +109,7 @@ void DumpWriter::framebufTexture(int level, u32 vramAddr, u32 bufw, u32 flags, c
     checkLevel(level);
     checkData(data, size);
     if (u64(size) + 16 > kMaxBlockBytes) throw std::length_error("DumpWriter: FRAMEBUF payload too large");
-    // §3.2: u32 address, s32 bufw, u32 flags (§3.3), u32 padding 0, then the texture bytes.
+    // ppdmp.md §3.2: u32 address, s32 bufw, u32 flags (ppdmp.md §3.3), u32 padding 0, then the texture bytes.
     std::vector<u8> bytes(16 + size_t(size));
     writeLE32(bytes.data(), vramAddr);
     writeLE32(bytes.data() + 4, bufw);
@@ -130,7 +131,7 @@ void DumpWriter::clutAddr(u32 vramAddr, u32 flags) {
 void DumpWriter::transferSrc(const void* data, u32 size) { add(TRANSFERSRC, data, size, kAlignData, true); }
 
 void DumpWriter::memset(u32 dest, u8 value, u32 size) {
-    // §3.2: the value is stored as an s32 of which players use the low byte.
+    // ppdmp.md §3.2: the value is stored as an s32 of which players use the low byte.
     u8 bytes[12];
     writeLE32(bytes, dest);
     writeLE32(bytes + 4, value);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "hle/dump/player.h"
 
 #include <algorithm>
@@ -177,7 +178,7 @@ void Replayer::appendToList(const std::vector<u32>& words) {
 
 void Replayer::registers(const Record& r, const u8* p) {
     if (!listBuf_) {
-        // The list starts with one NOP, enqueued stalled at its end (§6.1).
+        // The list starts with one NOP, enqueued stalled at its end (docs/ppdmp.md §6.1).
         listBuf_ = heap_.alloc(kListBufSize, true);
         if (!listBuf_) {
             warn("no guest memory for the display list");
@@ -220,7 +221,7 @@ void Replayer::registers(const Record& r, const u8* p) {
     if (opt_.timing == ReplayTiming::Eager) sync();
 }
 
-// §6.3 as PPSSPP's SubmitListEnd: FINISH + END (words still queued by data records after the
+// ppdmp.md §6.3 as PPSSPP's SubmitListEnd: FINISH + END (words still queued by data records after the
 // last block are dropped), run to completion.
 void Replayer::endList() {
     if (!listBuf_ || res_.timeLimitHit) return;
@@ -279,9 +280,9 @@ bool Replayer::play(std::string& err) {
             }
             // Copied at once, without a sync: in PPSSPP timing these bytes land before draws
             // recorded ahead of them that have not run. Flag bit 1 ("unchanged VRAM") is
-            // trustworthy from version 6 on (§3.3). Flag bit 0 ("target": a buffer drawn earlier
+            // trustworthy from version 6 on (ppdmp.md §3.3). Flag bit 0 ("target": a buffer drawn earlier
             // in this recording) is skipped too: both our backends keep what they drew, as
-            // PPSSPP's software renderer does (§6.2).
+            // PPSSPP's software renderer does (ppdmp.md §6.2).
             if (r.size > 16 && !(d_.version >= 6 && (flags & 2)) && !(flags & 1)) hostWrite(v, p + 16, r.size - 16);
         } else {
             switch (r.type) {
@@ -290,7 +291,7 @@ bool Replayer::play(std::string& err) {
                 u32 ctx[512] = {};
                 if (r.size < kInitBytes) warn("short INIT record");
                 if (r.size) std::memcpy(ctx, p, std::min<u32>(r.size, kInitBytes));
-                // The running list's OFFSET is its own, starting at 0 (§6.1).
+                // The running list's OFFSET is its own, starting at 0 (ppdmp.md §6.1).
                 ctx[7] = 0;
                 t_.loadContext(ctx);
                 for (int i = 0; i < 8; ++i) lastTex_[i] = lastBufw_[i] = 0;
@@ -322,7 +323,7 @@ bool Replayer::play(std::string& err) {
                         pending_.push_back(cmd(GE_CMD_CBW, (a >> 8) & 0xFF0000));
                         pending_.push_back(cmd(GE_CMD_CBP, a & 0xFFFFFF));
                         // The palette at recording start (newer v6 dumps): load it into palette
-                        // RAM, which matches the recording's state (§6.4).
+                        // RAM, which matches the recording's state (ppdmp.md §6.4).
                         if (prev && prev->type == INIT) pending_.push_back(cmd(GE_CMD_CLOAD, std::min<u32>(r.size / 32, 32)));
                     }
                 }
@@ -362,7 +363,7 @@ bool Replayer::play(std::string& err) {
                 res_.hasDisplay = true;
                 res_.displayAddr = d_.payloadWord(r, 0);
                 res_.displayStride = d_.payloadWord(r, 1);
-                res_.displayFormat = d_.payloadWord(r, 2) & 0xFF;  // §3.2: mask the format
+                res_.displayFormat = d_.payloadWord(r, 2) & 0xFF;  // ppdmp.md §3.2: mask the format
                 break;
             default: {
                 char buf[64];

@@ -1,4 +1,5 @@
-// Replays a .ppdmp frame dump on a GeEngine (ppdmp-format.md §6): rebuilds guest memory and a
+// SPDX-License-Identifier: MIT
+// Replays a .ppdmp frame dump on a GeEngine (docs/ppdmp.md §6): rebuilds guest memory and a
 // runnable display list from the records, executes it with the engine's current backend, and
 // reports the frame buffer to show.
 #pragma once
@@ -17,7 +18,7 @@ struct DumpSummary {
 };
 DumpSummary summarize(const Dump& d);
 
-// When the GE runs during a replay (ppdmp-format.md §6.2 "When the GE runs").
+// When the GE runs during a replay (ppdmp.md §6.2 "When the GE runs").
 enum class ReplayTiming {
     // As PPSSPP's player (GPU/Debugger/Playback.cpp DumpExecute): REGISTERS blocks are appended
     // without moving the stall address; the GE catches up only at the player's sync points (a
@@ -39,7 +40,7 @@ struct ReplayOptions {
     // The replay's budget in emulated GE time (hle/ge_time.h), milliseconds; 0 = no limit. The
     // GE's work and the CPU/DMA copies the dump replays (charged like block transfers) count;
     // once it is used up the rest of the frame is not drawn and ReplayResult::warning says so.
-    // Default: 10 frames at 60 Hz. A real frame stays far below (the 20 frametests: docs).
+    // Default: 10 frames at 60 Hz. A real frame stays far below (the 20 frametests: docs/timing.md).
     double maxGeMs = kDefaultMaxGeMs;
     static constexpr double kDefaultMaxGeMs = 1000.0 / 6.0;
 };

@@ -1,4 +1,5 @@
-// .ppdmp reader/writer; see ppdmp.h and ppdmp-format.md §1–3, §5, §7.
+// SPDX-License-Identifier: MIT
+// .ppdmp reader/writer; see ppdmp.h and docs/ppdmp.md §1–§3, §5, §7.
 #include "hle/dump/ppdmp.h"
 
 #include <snappy.h>
@@ -17,8 +18,8 @@ namespace ge::dump {
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'P', 'S', 'S', 'P', 'P', 'G', 'E'};  // §2, no NUL
-constexpr int kZstdLevel = 6;  // §2.2 / §7: what PPSSPP's writer uses
+constexpr char kMagic[8] = {'P', 'P', 'S', 'S', 'P', 'P', 'G', 'E'};  // ppdmp.md §2, no NUL
+constexpr int kZstdLevel = 6;  // ppdmp.md §2.2 / §7: what PPSSPP's writer uses
 
 // ---------------------------------------------------------------------------------------------
 // Record type names, built at compile time so recordTypeName() can hand out stable pointers
@@ -101,7 +102,7 @@ bool tryResize(std::vector<u8>& v, size_t n, std::string& err) {
     return true;
 }
 
-// §2.2: versions 5–6 use one zstd frame per block. Streamed into a buffer that grows only as
+// ppdmp.md §2.2: versions 5–6 use one zstd frame per block. Streamed into a buffer that grows only as
 // output arrives and never past `expected` (itself capped by the header checks), so a frame that
 // claims or produces more than the header says costs no more than the header's size, and a frame
 // without a content size is bounded the same way.
@@ -167,7 +168,7 @@ bool decompressZstd(const u8* src, size_t n, u64 expected, std::vector<u8>& out,
     return true;
 }
 
-// §2.2: versions 2–4 use raw snappy (varint length + tagged elements), not the framed format.
+// ppdmp.md §2.2: versions 2–4 use raw snappy (varint length + tagged elements), not the framed format.
 bool decompressSnappy(const u8* src, size_t n, u64 expected, std::vector<u8>& out, const char* what,
                       std::string& err) {
     const char* s = reinterpret_cast<const char*>(src);
@@ -294,7 +295,7 @@ bool loadDumpFromMemory(const u8* data, size_t size, Dump& out, std::string& err
         return false;
     }
     if (d.version >= 4) {
-        // §2: 9-byte NUL-padded game ID (may use all 9 bytes), then 3 padding bytes.
+        // ppdmp.md §2: 9-byte NUL-padded game ID (may use all 9 bytes), then 3 padding bytes.
         const u8* id = nullptr;
         const u8* pad = nullptr;
         if (!rd.take(kGameIdBytes, id) || !rd.take(3, pad)) {
@@ -345,11 +346,11 @@ bool loadDumpFromMemory(const u8* data, size_t size, Dump& out, std::string& err
     }
     if (!decompressBlock(d.version, pushSrc, pushCompressed, pushbufSize, d.pushbuf, "push buffer", err))
         return false;
-    // Bytes after the second block are ignored, as PPSSPP does (§2: nothing should follow).
+    // Bytes after the second block are ignored, as PPSSPP does (ppdmp.md §2: nothing should follow).
 
     d.records.resize(commandCount);
     for (u32 i = 0; i < commandCount; ++i) {
-        const u8* p = cmd.data() + size_t(i) * kRecordBytes;  // §3.1: packed u8, u32, u32
+        const u8* p = cmd.data() + size_t(i) * kRecordBytes;  // ppdmp.md §3.1: packed u8, u32, u32
         d.records[i].type = p[0];
         d.records[i].size = readLE32(p + 1);
         d.records[i].ptr = readLE32(p + 5);
@@ -388,7 +389,7 @@ bool extractPpdmpFromZip(const u8* data, size_t size, std::vector<u8>& out, std:
     }
     zip_error_fini(&ze);
 
-    // §1: the last entry whose lower-cased name ends in .ppdmp wins; __macosx/ is skipped.
+    // ppdmp.md §1: the last entry whose lower-cased name ends in .ppdmp wins; __macosx/ is skipped.
     const zip_int64_t count = zip_get_num_entries(za.get(), 0);
     zip_int64_t chosen = -1;
     std::string chosenName;
@@ -535,7 +536,7 @@ std::vector<u8> serializeDump(const Dump& d) {
     if (!compressZstd(cmd.data(), cmd.size(), cmdZ) || !compressZstd(d.pushbuf.data(), d.pushbuf.size(), pushZ))
         return {};
 
-    // §7: magic, version 6, 9-byte NUL-padded game ID, 3 zero bytes, then the two blocks.
+    // ppdmp.md §7: magic, version 6, 9-byte NUL-padded game ID, 3 zero bytes, then the two blocks.
     std::vector<u8> out;
     out.reserve(24 + 12 + cmdZ.size() + 4 + pushZ.size());
     auto put32 = [&out](u32 v) {

@@ -1,4 +1,5 @@
-// FrameRecorder: see recorder.h, docs/recording.md and ppdmp-format.md §3–§7. The structure
+// SPDX-License-Identifier: MIT
+// FrameRecorder: see recorder.h, docs/recording.md and docs/ppdmp.md §3–§7. The structure
 // follows PPSSPP's GPU/Debugger/Record.cpp (NotifyCommand, FlushPrimState, EmitTextureData,
 // EmitClut, EmitTransfer, NotifyMemcpy/NotifyMemset, GetTargetFlags, DirtyDrawnVRAM,
 // CheckEdramTrans); the code is our own.
@@ -12,7 +13,7 @@ namespace ge::dump {
 
 namespace {
 
-// Bits per texel of a texture format (ge-reference.md §6.1; PPSSPP textureBitsPerPixel).
+// Bits per texel of a texture format (docs/ge-rules.md §6.1; PPSSPP textureBitsPerPixel).
 u32 texelBits(u32 fmt) {
     static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 0, 0, 0, 0, 0};
     return bits[fmt & 15];
@@ -25,7 +26,7 @@ bool isMatrixOp(int op) {
     return op == GE_CMD_BONEN || op == GE_CMD_BONED || (op >= GE_CMD_WORLDN && op <= GE_CMD_TGEND);
 }
 
-// Opcodes a REGISTERS block must not hold (ppdmp-format.md §7 rule 4): a player replaces them by
+// Opcodes a REGISTERS block must not hold (ppdmp.md §7 rule 4): a player replaces them by
 // its own (pointers from data records) or they steer the list.
 bool notRecorded(u32 op) {
     switch (op) {
@@ -83,8 +84,8 @@ void FrameRecorder::warn(const std::string& w) {
 void FrameRecorder::begin() {
     if (attached_) return;
     const GeState& st = eng_.state();
-    // Record.cpp BeginRecording: INIT (the context, §5), then the CLUT cache at the start (the
-    // 1024-byte palette RAM; §2.1 "a CLUT record right after INIT"), then the frame shown.
+    // Record.cpp BeginRecording: INIT (the context, ppdmp.md §5), then the CLUT cache at the start (the
+    // 1024-byte palette RAM; ppdmp.md §2.1 "a CLUT record right after INIT"), then the frame shown.
     u32 ctx[512];
     st.saveContext(ctx);
     out_.init(ctx);
@@ -92,7 +93,7 @@ void FrameRecorder::begin() {
     clutRegsReplaced_ = true;
     out_.display(st.framebufAddr(), st.framebufStride(), st.framebufFormat());
     // Nothing of VRAM is known to the dump yet (DirtyAllVRAM(DIRTY)); a player's VRAM starts as
-    // zeros (§6.4), which is what the shadow copy says.
+    // zeros (ppdmp.md §6.4), which is what the shadow copy says.
     vram_.assign(Memory::kVramSize >> kBlockShift, Vram::Dirty);
     shadow_.assign(Memory::kVramSize, 0);
     targets_.clear();
@@ -128,7 +129,7 @@ void FrameRecorder::end() {
     if (!attached_) return;
     checkEdram();
     flushBlock();
-    // §7 rule 3: DISPLAY is the very last record. A DISPLAY the host just gave is that record.
+    // ppdmp.md §7 rule 3: DISPLAY is the very last record. A DISPLAY the host just gave is that record.
     const std::vector<Record>& recs = out_.dump().records;
     const bool lastIsHostDisplay = haveHostDisplay_ && !recs.empty() && recs.back().type == DISPLAY;
     if (!lastIsHostDisplay) {
@@ -161,8 +162,8 @@ void FrameRecorder::checkEdram() {
 // writes only its own register (a matrix port also the matrix and its index; CLOAD the palette),
 // so anything else that differs from the state before the previous command came from outside.
 // The whole context then goes into the list as state words, as the firmware restores a context
-// by running words 17–383 of it (ppdmp-format.md §5), minus the words a REGISTERS block must not
-// hold (§7 rule 4). PPSSPP's recorder does not notice restores; a dump of a frame with one
+// by running words 17–383 of it (ppdmp.md §5), minus the words a REGISTERS block must not
+// hold (ppdmp.md §7 rule 4). PPSSPP's recorder does not notice restores; a dump of a frame with one
 // would otherwise replay with the state from before it.
 void FrameRecorder::checkExternalChanges() {
     const GeState& s = eng_.state();
@@ -239,12 +240,12 @@ const u8* FrameRecorder::readGuest(u32 addr, u32 size) {
 // Record.cpp FlushPrimState + EmitPrim: texture levels, INDICES, VERTICES, then the kick word.
 void FrameRecorder::emitDraw(u32 word, u32 count) {
     const GeState& st = eng_.state();
-    // lastRenderTargets: colour and depth buffer of every draw (flag bit 0 of §3.3).
+    // lastRenderTargets: colour and depth buffer of every draw (flag bit 0 of ppdmp.md §3.3).
     targets_.insert(vramOffset(st.framebufAddr()));
     targets_.insert(vramOffset(st.depthbufAddr()));
 
     // Every level with an address, when texturing or antialiasing is on or the vertices carry
-    // texture coordinates (PPSSPP plays it safe the same way; ppdmp-format.md §3.2).
+    // texture coordinates (PPSSPP plays it safe the same way; ppdmp.md §3.2).
     const bool texturing = st.TME_on() || st.AAE_on();
     const bool texCoords = st.VTYPE_tc() != 0;
     if (texturing || texCoords) {
@@ -257,7 +258,7 @@ void FrameRecorder::emitDraw(u32 word, u32 count) {
         const u32 stride = st.vertexStride();
         u64 vertexCount = count;
         if (const u32 isz = st.indexSize()) {
-            // §3.2: indexed draws carry (maxIndex + 1) vertices so the index values stay valid.
+            // ppdmp.md §3.2: indexed draws carry (maxIndex + 1) vertices so the index values stay valid.
             const u32 want = count * isz;
             const u32 n = mem.validSize(st.indexAddr, want);
             const u8* p = readGuest(st.indexAddr, n);
@@ -285,9 +286,9 @@ void FrameRecorder::emitDraw(u32 word, u32 count) {
     ++draws_;
 }
 
-// Record.cpp EmitTextureData: `bpp·(bufw·h + max(0, w − bufw))/8` bytes of level n (§3.2), cut at
+// Record.cpp EmitTextureData: `bpp·(bufw·h + max(0, w − bufw))/8` bytes of level n (ppdmp.md §3.2), cut at
 // the end of valid memory. VRAM levels become FRAMEBUFn with the address, the TBW width (players
-// turn it into the TBWn word, §6.2) and the §3.3 flags, and always carry their bytes.
+// turn it into the TBWn word, ppdmp.md §6.2) and the ppdmp.md §3.3 flags, and always carry their bytes.
 void FrameRecorder::emitTexture(int level, u32 addr) {
     const GeState& st = eng_.state();
     const u32 bits = texelBits(st.TPF_format());
@@ -322,7 +323,7 @@ void FrameRecorder::emitClut(u32 word) {
     if (n) {
         const u8* p = readGuest(addr, n);
         if (Memory::isVram(addr)) {
-            // The player leaves CBP/CBW as recorded for a VRAM palette (§6.2): put them back if
+            // The player leaves CBP/CBW as recorded for a VRAM palette (ppdmp.md §6.2): put them back if
             // the initial CLUT record made the player point them elsewhere.
             if (clutRegsReplaced_) {
                 block_.push_back(st.regs[GE_CMD_CBP]);
@@ -341,7 +342,7 @@ void FrameRecorder::emitClut(u32 word) {
 }
 
 // Record.cpp EmitTransfer: only transfers into VRAM (the XSTART word of others is dropped too);
-// the source from its base up to the last pixel used (§3.2).
+// the source from its base up to the last pixel used (ppdmp.md §3.2).
 void FrameRecorder::emitTransfer(u32 word) {
     const GeState& st = eng_.state();
     flushBlock();
@@ -392,7 +393,7 @@ void FrameRecorder::markVram(u32 addr, u32 size, Vram state, bool wholeBlocksOnl
     for (u32 b = first; b <= last; ++b) vram_[b] = state;
 }
 
-// Record.cpp GetTargetFlags (ppdmp-format.md §3.3). The host may write VRAM without telling
+// Record.cpp GetTargetFlags (ppdmp.md §3.3). The host may write VRAM without telling
 // (ge2gl_mem_pointer), so "clean" blocks are always checked against the shadow copy, as PPSSPP
 // does for blocks in its UNKNOWN state after the CPU ran.
 u32 FrameRecorder::targetFlags(u32 addr, u32 size) {

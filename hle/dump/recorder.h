@@ -1,15 +1,16 @@
+// SPDX-License-Identifier: MIT
 // FrameRecorder: records what a running GeEngine executes as a `.ppdmp` frame dump (version 6),
 // the way PPSSPP's recorder does (GPU/Debugger/Record.cpp, GPURecord::Recorder), so that PPSSPP's
-// player and `ge2gl render` replay it to the same picture (ppdmp-format.md §4, §6, §7;
+// player and `ge2gl render` replay it to the same picture (docs/ppdmp.md §4, §6, §7;
 // docs/recording.md lists every record and where it comes from).
 //
 // It is a CommandObserver (hle/ge_engine.h): the engine calls it before every command, with its
 // state and guest memory as they are before that command runs. From them it builds
 //   - REGISTERS: every command word except the ones a player replaces or that only steer the list
 //     (VADR, IADR, BASE, OFFSET, ORIGIN, JUMP, BJUMP, CALL, RET, END, SIGNAL, FINISH, BBOX;
-//     Record.cpp NotifyCommand; ppdmp-format.md §3.2, §7 rule 4);
+//     Record.cpp NotifyCommand; ppdmp.md §3.2, §7 rule 4);
 //   - at PRIM/BEZIER/SPLINE (Record.cpp FlushPrimState): the texture levels (TEXTUREn from RAM,
-//     FRAMEBUFn with the §3.3 flags from VRAM), then INDICES, then VERTICES, sized from VTYPE,
+//     FRAMEBUFn with the ppdmp.md §3.3 flags from VRAM), then INDICES, then VERTICES, sized from VTYPE,
 //     the count and the engine's vertex/index pointers;
 //   - at CLOAD (EmitClut): [CLUTADDR] + CLUT; at XSTART (EmitTransfer): TRANSFERSRC, the kick
 //     dropped for transfers to RAM;
@@ -22,7 +23,7 @@
 //
 // Context restores (sceGeRestoreContext, a save state) change the registers without a command:
 // the recorder notices them (a register that changed although the command that ran did not write
-// it) and writes the whole context as state words, as the firmware restores one (§5).
+// it) and writes the whole context as state words, as the firmware restores one (ppdmp.md §5).
 //
 // Backends that draw elsewhere than guest memory (GL) are asked for the bytes the recorder reads
 // from VRAM (Renderer::syncMemoryForRead) first, so render targets used as textures, CLUTs or
@@ -113,7 +114,7 @@ private:
     int lastOp_ = -1;
     u64 lastCount_ = ~u64(0);  // stats().commands and pc at the last command seen
     u32 lastPc_ = 0;
-    // The player queues CBW/CBP for the initial CLUT record (§6.2): the recorded CBP/CBW no
+    // The player queues CBW/CBP for the initial CLUT record (ppdmp.md §6.2): the recorded CBP/CBW no
     // longer hold, so they are written again before the first CLOAD from VRAM.
     bool clutRegsReplaced_ = false;
     bool haveHostDisplay_ = false;

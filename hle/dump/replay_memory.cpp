@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Guest memory for the dump player (see replay_memory.h for the rules and their source).
 #include "hle/dump/replay_memory.h"
 

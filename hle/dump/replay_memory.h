@@ -1,10 +1,11 @@
+// SPDX-License-Identifier: MIT
 // Where the dump player puts the dump's bytes in guest memory, as PPSSPP's player does
 // (GPU/Debugger/Playback.cpp: `BufMapping`, and the kernel's `userMemory` BlockAllocator behind it).
 //
 // The layout is observable: a draw that reads past its recorded payload (a DXT texture whose rows
 // run beyond bufw, a mip level read at a guessed address) sees whatever these rules put there, and
 // the moments at which the player has to let the GE catch up before reusing memory are sync points
-// of the replay (ppdmp-format.md §6.2 "When the GE runs"). So the rules are modelled exactly:
+// of the replay (docs/ppdmp.md §6.2 "When the GE runs"). So the rules are modelled exactly:
 //
 //  - GuestHeap: first fit from the bottom (or last fit from the top) over user memory
 //    [0x08800000, 0x0A000000), sizes rounded up to 256 bytes, as BlockAllocator(256).

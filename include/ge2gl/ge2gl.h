@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * ge2gl plugin API: the PSP Graphics Engine as a library for emulators. Plain C ABI (C99).
  *

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ge2gl C++ wrapper: RAII ownership of a ge2gl_context and std::function callbacks over the C ABI.
 // Header-only; it links only against the C functions of ge2gl.h, so it works with any compiler that
 // can call the shared library. No exceptions cross the C boundary: the callback trampolines catch

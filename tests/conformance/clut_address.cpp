@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/clut/address, re-created (issue 13; gu_sim.h, conformance.h). A 1x1
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/clut/address, re-created (gu_sim.h, conformance.h). A 1x1
 // CLUT32-indexed texture (index 0) covers the screen; the palette is loaded from
 // clutPattern + offset (8 words 0x11111111 … 0x88888888) with offsets 0–16 bytes, then from the
 // last 16 bytes of VRAM's mirrors (0x047FFFF0) with 0–63 blocks, then from just past the mirrors

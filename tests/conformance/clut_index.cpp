@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/clut/shifts, masks and offset, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/clut/shifts, masks and offset, re-created (gu_sim.h,
 // conformance.h). A 1x1 CLUT32 texture covers the screen (DECAL/RGB, nearest); the palette (word i
 // = i * 0x01010101 for i < 256, then 256 words of 0xDEADBEEF) is loaded with 0xFF blocks and the
 // CLUT mode's index shift, mask and start (offset) are varied, with 8888 and 4444 palette entries;

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/blend and blend565, re-created (issue 13; gu_sim.h): every
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/blend and blend565, re-created (gu_sim.h): every
 // blend equation and factor (blend565 also factors 11-15, which act as FIX), the doubled alpha
 // factors' saturation, FIX colours, on an 8888 and a 565 frame buffer. Each checkpoint fills VRAM
 // with `prev`, draws a one-pixel through-mode sprite of colour `c` with the blend and a stencil

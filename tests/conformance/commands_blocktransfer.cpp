@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/blocktransfer, re-created (issue 13; gu_sim.h, conformance.h).
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/blocktransfer, re-created (gu_sim.h, conformance.h).
 // A block transfer from a buffer of 0xAA bytes to one of 0xBB bytes (2 MiB each, in RAM), 16- or
 // 32-bit pixels, with source and destination strides 0 to 0xFC00 and sizes 1x1 to 1024x512; the
 // test counts the bytes from the destination's start that equal the source's. The values show the

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/cull, re-created (issue 13; gu_sim.h, conformance.h). Eight
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/cull, re-created (gu_sim.h, conformance.h). Eight
 // 40x30 boxes per pass, left to right from (10, 10) with 15 pixels between them, each drawn as a
 // 4-vertex fan (clockwise or counter-clockwise in screen order) or a 2-vertex sprite (corners in
 // either diagonal), with culling off or on and CULL 0 or 1; four passes: through mode, transform

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/fog, re-created (issue 13; gu_sim.h, conformance.h). A
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/fog, re-created (gu_sim.h, conformance.h). A
 // transform-mode sprite from (-1, -1, 0) to (1, 1, 0) with fog on over a 10x10 scissor, for fog
 // near/far pairs (fog = (far - z) * 1/(far - near), sceGuFog sends 0 for 1/(far - near) when
 // far == near); then immediate-mode sprites (CMD_X2 ... CMD_AP2 with the fog flag) whose fog factor

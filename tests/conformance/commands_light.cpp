@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/light, re-created (issue 13; gu_sim.h, conformance.h). One
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/light, re-created (gu_sim.h, conformance.h). One
 // light (light 0) of each type (directional, point, spot) and each component mode (ambient +
 // diffuse, + specular, powered diffuse) lights a 2x2 transform-mode quad with a 16-bit normal of
 // raw (0, 0, ±1) — the test writes 1.0f through (s16)(int), so the normal is 1/32768 long — at the
@@ -6,7 +7,8 @@
 // (diffuse angles, attenuation, spot direction / exponent / cutoff including NaN and infinities,
 // powered diffuse, specular). After each group the frame ends and every box's top-left pixel is
 // read. Light colours: ambient red, diffuse green, specular blue; material ambient/diffuse/
-// specular white, emissive black. This is the test where ge2gl trailed PPSSPP (issue 13).
+// specular white, emissive black. ge2gl once trailed PPSSPP on this test (docs/conformance.md,
+// "Spot light direction").
 #include "tests/conformance/conformance.h"
 
 #include <cmath>

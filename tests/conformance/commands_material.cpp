@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/commands/material, re-created (issue 13; gu_sim.h, conformance.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/commands/material, re-created (gu_sim.h, conformance.h,
 // screenshot.h). A background sprite (0, 0)-(479, 272) whose texels are all transparent, then 17
 // through-mode sprites of 40x20 (ten a row from (10, 10), 47 pixels apart, rows 26 apart) with a 4x4
 // CLUT8 checkerboard (index 0: 0xAAAAAAAA, 1: opaque white; DECAL), each drawn as its own list, under

@@ -1,4 +1,5 @@
-// Shared pieces of the conformance tests (issue 13; the environment is gu_sim.h): the SDK call
+// SPDX-License-Identifier: MIT
+// Shared pieces of the conformance tests (the environment is gu_sim.h): the SDK call
 // sequences the pspautotests GPU tests open with, one-pixel draws, and the test macro that runs a
 // test program on both backends and holds each to its floor (floors.cpp).
 #pragma once

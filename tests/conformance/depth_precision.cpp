@@ -1,9 +1,10 @@
-// pspautotests tests/gpu/depth/precision, re-created (issue 13; gu_sim.h). A textured sprite at
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/depth/precision, re-created (gu_sim.h). A textured sprite at
 // depth 0x1234 (through mode) or at a 16-bit transform-mode Z that the viewport maps to about
 // 0x1234 is drawn over a depth buffer cleared to 0x1233, 0x1234 or 0x1235 with each depth
 // function; pixel 0's red byte says whether it passed. Then the same with the projection moved by
 // ±0.00005 / ±0.00002 in Z and with viewport Z centres of 32767.0, 32768.0 and 32767.5: where
-// the GE's depth arithmetic rounds. PPSSPP fails parts of this test (issue 13).
+// the GE's depth arithmetic rounds. PPSSPP fails parts of this test (docs/conformance.md).
 #include "tests/conformance/conformance.h"
 
 #include <cstring>

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/dither/dither, re-created (issue 13; gu_sim.h, conformance.h). A
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/dither/dither, re-created (gu_sim.h, conformance.h). A
 // through-mode fan of colour 0xFF1FF088 covers the screen from (xoff, yoff) with dithering on, for
 // dither matrices (zero, one corner -1/-8/+7, all sixteen values, values with bits above 4 set),
 // draw-buffer formats 565/5551/4444/8888, offsets, stencil REPLACE 0xF0, a pixel mask, logic op

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/filtering/nearest and linear, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/filtering/nearest and linear, re-created (gu_sim.h,
 // conformance.h). A 2x2 8888 texture (buffer width 4) of two colours — alternating columns, or one
 // texel against three — is drawn by a transform-mode sprite covering pixels (0, 0)-(2, 2) with
 // float texture coordinates 0..1 shifted by an offset, REPLACE/RGBA, with nearest or linear

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/filtering/mipmaplinear, re-created (issue 13; gu_sim.h, conformance.h). Two
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/filtering/mipmaplinear, re-created (gu_sim.h, conformance.h). Two
 // mipmap levels — level 0 a 2x2 8888 texture of one colour, level 1 a 1x1 texture of another (buffer
 // width 4 each) — are drawn with NEAREST_MIPMAP_LINEAR for both filters by the transform-mode sprite
 // of the filtering tests (pixels (0, 0)-(2, 2), float texture coordinates 0..1, REPLACE/RGBA), in

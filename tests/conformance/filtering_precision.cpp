@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/filtering/precisionlinear2d, precisionlinear3d, precisionnearest2d and
-// precisionnearest3d, re-created (issue 13; gu_sim.h, conformance.h). A 2x2 8888 texture (white,
+// precisionnearest3d, re-created (gu_sim.h, conformance.h). A 2x2 8888 texture (white,
 // black / red, green; buffer width 4, clamped) is magnified onto a sprite from (0, 0) to (w, h)
 // pixels — 256x256 in each of the four corner orders, 2x2, with UVs shifted by a texel or half a
 // texel — and the sprite is moved by 1/16-pixel steps in X and in Y; in through mode (2d: the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tests/conformance/gu_sim.h"
 
 #include <cstdio>

@@ -1,4 +1,5 @@
-// Hardware conformance (issue 13): the environment a pspautotests GPU test runs in, re-created
+// SPDX-License-Identifier: MIT
+// Hardware conformance (docs/conformance.md): the environment a pspautotests GPU test runs in, re-created
 // around ge2gl's engine so that the test's GE state and draws can be replayed as the SDK calls of
 // its C source would emit them, and its read-backs compared with the values recorded on a PSP.
 //

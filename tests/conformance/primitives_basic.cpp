@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // pspautotests tests/gpu/primitives/{triangles, trianglestrip, trianglefan, points, invalidprim,
-// lines, linestrip, rectangles}, re-created (issue 13; gu_sim.h, conformance.h, screenshot.h). Each
+// lines, linestrip, rectangles}, re-created (gu_sim.h, conformance.h, screenshot.h). Each
 // draws one 40x40 shape (or a pair of points / a short line) per vertex format and mode on a frame
 // cleared to black: colour only (no position), 8-bit, 16-bit and float positions, in through mode
 // (upper row: pixels) and transform mode (lower row, 50 pixels down for the shapes, 10 for points

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/primitives/immediate, re-created (issue 13; gu_sim.h, conformance.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/primitives/immediate, re-created (gu_sim.h, conformance.h,
 // screenshot.h). Primitives sent as immediate vertices: per vertex X2, Y2 (0xFF0000 | (2048 + x) << 4),
 // Z2, [S2, T2, Q2,] RGB2, F2 (fog 0x7F, or 0xFF for the textured ones), I2 (secondary colour
 // 0x7F7F7F), then AP2 (flags | prim << 8 | alpha), where a first vertex's flags bits choose shading

@@ -1,6 +1,7 @@
-// pspautotests tests/gpu/primitives/indices and primitives/continue, re-created (issue 13;
-// gu_sim.h, conformance.h, screenshot.h). The vertex and index arrays are the test program's static
-// arrays, placed in memory once; the draws point into them as its sceGuDrawArray calls do (an
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/primitives/indices and primitives/continue, re-created (gu_sim.h,
+// conformance.h, screenshot.h). The vertex and index arrays are the test program's static arrays,
+// placed in memory once; the draws point into them as its sceGuDrawArray calls do (an
 // address of NULL sends no BASE/IADR/VADR word, so the GE carries on from where the previous draw
 // left its pointers), and PRIM 7 is GU_CONTINUE. The screenshot is the check.
 //

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/primitives/bezier and primitives/spline, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/primitives/bezier and primitives/spline, re-created (gu_sim.h,
 // conformance.h, screenshot.h). Through-mode patches of 16-bit-position control points on a black
 // frame: 4x4 grids of 30x30 pixels (control points 10 pixels apart, rows at the y given), in flat
 // colours, with UVs (a 2x2 CLUT8 texture {0, 0 / 0, 1}: red, red / red, green; DECAL), with

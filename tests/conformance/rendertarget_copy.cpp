@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/rendertarget/copy, re-created (issue 13; gu_sim.h, conformance.h). A 2x2
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/rendertarget/copy, re-created (gu_sim.h, conformance.h). A 2x2
 // CLUT8 texture (indices 1 2 / 2 1, buffer width 16) is drawn, DECAL/RGB, as a through-mode sprite
 // over (10, 10)-(470, 262) with texture coordinates 0..2: with the palette "add one" (entry i = i + 1)
 // into frame buffer 0 and "add three" (i + 3) into frame buffer 1, for nearest and linear filtering,

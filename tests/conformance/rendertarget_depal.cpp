@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/rendertarget/depal, re-created (issue 13; gu_sim.h, conformance.h). A 1x1
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/rendertarget/depal, re-created (gu_sim.h, conformance.h). A 1x1
 // CLUT8 texture (index 0, palette "add one": entry i = i + 1) is drawn as a sprite over
 // (10, 10)-(470, 262) into frame buffer 0; buffer 0 is then used as a 512x512 CLUT32 texture with the
 // same palette over the whole screen of buffer 1; then buffer 1 is used as the texture of a draw

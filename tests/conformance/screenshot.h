@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Whole-frame checkpoints for the pspautotests GPU tests whose hardware result is a screenshot
 // (`.expected.bmp`: the display buffer as a PSP showed it, taken by the test's
 // emulatorEmitScreenshot(), 512x272 of which PPSSPP's headless runner compares 480x272 exactly on

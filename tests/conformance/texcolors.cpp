@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/texcolors/rgb565, rgba5551 and rgba4444, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/texcolors/rgb565, rgba5551 and rgba4444, re-created (gu_sim.h,
 // conformance.h). An 8x8 texture of one 16-bit texel value (white, a dark red, a grey, a brown),
 // nearest filtering, DECAL/RGB, clamped, drawn by a 2x2 through-mode sprite at (0, 0) into an 8888
 // buffer; pixel 0's RGB is read back and the buffer zeroed. The values show how each 16-bit

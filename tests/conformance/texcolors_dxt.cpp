@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/texcolors/dxt1, dxt3 and dxt5, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/texcolors/dxt1, dxt3 and dxt5, re-created (gu_sim.h,
 // conformance.h). An 8x8 texture of four identical DXT blocks (the same two 565 colours and index
 // rows in each), nearest filtering, REPLACE/RGBA, clamped, drawn by a 2x2 through-mode sprite at
 // (0, 0) into an 8888 buffer, twice per box: once with blending off (pixel 0's RGB: the texel's

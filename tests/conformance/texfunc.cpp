@@ -1,5 +1,6 @@
-// pspautotests tests/gpu/texfunc/{add,blend,decal,modulate,replace}, re-created (issue 13;
-// gu_sim.h, conformance.h). Each checkpoint draws a transform-mode sprite of vertex colour `c`
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/texfunc/{add,blend,decal,modulate,replace}, re-created (gu_sim.h,
+// conformance.h). Each checkpoint draws a transform-mode sprite of vertex colour `c`
 // (no texture coordinates: texel 0) textured by a 1x1 8888 texture of colour `texc` that the CPU
 // rewrote in RAM when it changed, with the texture function under test, optionally doubled
 // (GU_FRAGMENT_2X) and, in blend.cpp, the environment colour `env`; pixel 0 is read back. The

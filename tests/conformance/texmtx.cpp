@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/texmtx/uvs, normals, prims and source, re-created (issue 13; gu_sim.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/texmtx/uvs, normals, prims and source, re-created (gu_sim.h,
 // conformance.h). A 256x256 8888 texture whose texel (x, y) is 0xFFFF0000 | y << 8 | x (nearest,
 // REPLACE/RGBA) is mapped with the texture matrix (TMAP mode 1) from the projection source under
 // test — position, UV, normal, normalised normal, the undefined 3 — onto a square covering

@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/textures/mipmap, re-created (issue 13; gu_sim.h, conformance.h). An 8888
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/textures/mipmap, re-created (gu_sim.h, conformance.h). An 8888
 // texture with 8 levels (256x256 halving to 2x2, level l filled with 0x10 * l grey; buffer width at
 // least 4, each level 16-byte aligned after the previous one), NEAREST_MIPMAP_LINEAR, clamped,
 // DECAL/RGB, texture slope 2.0, drawn by a through-mode sprite at 1:1, magnified 4x, minified 2x,

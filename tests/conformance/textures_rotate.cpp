@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/textures/rotate, re-created (issue 13; gu_sim.h, conformance.h). A 2x2
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/textures/rotate, re-created (gu_sim.h, conformance.h). A 2x2
 // 8888 texture (texels 0x0100FF, 0x02FF00 / 0x03FF00, 0x0400FF), nearest, DECAL/RGB, drawn by a
 // 2x2 sprite whose two vertices are given in the four corner orders (TL-BR, TR-BL, BL-TR, BR-TL),
 // in through mode, in transform mode, with the model, view or projection matrix flipping Y, and

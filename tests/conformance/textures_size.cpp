@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/textures/size, re-created (issue 13; gu_sim.h, conformance.h). Textures of
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/textures/size, re-created (gu_sim.h, conformance.h). Textures of
 // 1 to 32768 texels wide (one row) and 1 to 32768 texels high (one column) in 8888, 4444, CLUT8 and
 // CLUT4 are drawn by a sprite over pixels (0, 0)-(256, 256), in transform mode (a 256x256 viewport,
 // texture coordinates 0..1) and in through mode (texture coordinates 0..w, 0..h), NEAREST, clamped,

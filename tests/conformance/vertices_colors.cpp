@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/vertices/colors, re-created (issue 13; gu_sim.h, conformance.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/vertices/colors, re-created (gu_sim.h, conformance.h,
 // screenshot.h). 27 boxes of 40x40 pixels, nine a row from (10, 10), 50 pixels apart, each a
 // 4-vertex fan of one colour in a 16-bit position format: the colour as 5650, 5551, 4444 or 8888;
 // three rows: transform mode, through mode, through mode in clear mode (CMODE 0x301, colour and

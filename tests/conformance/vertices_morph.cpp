@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/vertices/morph, re-created (issue 13; gu_sim.h, conformance.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/vertices/morph, re-created (gu_sim.h, conformance.h,
 // screenshot.h). Twelve 32x32 transform-mode sprites, eleven a row from (10, 10), 42 pixels apart,
 // each with 1, 2 or 4 morph copies of its two vertices (VTYPE morph count): copy 0 the box, in
 // COLORS[0] (red), with UV (0, 0)-(1, 1); the other copies the box moved by (4, 4) with UV + 0.5 in

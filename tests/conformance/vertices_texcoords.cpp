@@ -1,4 +1,5 @@
-// pspautotests tests/gpu/vertices/texcoords, re-created (issue 13; gu_sim.h, conformance.h,
+// SPDX-License-Identifier: MIT
+// pspautotests tests/gpu/vertices/texcoords, re-created (gu_sim.h, conformance.h,
 // screenshot.h). 30 textured fans of 32x32 pixels (two of 128x32), left to right from (10, 10), 10
 // pixels apart, wrapping into rows 42 apart, each with texture coordinates (0, 0)-(u, v) in an 8-bit,
 // 16-bit or float format, in through and transform mode, over a 4x4 8888 texture whose texel

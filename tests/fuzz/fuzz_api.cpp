@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (h): the plugin C ABI (include/ge2gl/ge2gl.h) driven by a byte stream. An instance with
 // the software backend (one thread) is created, then each opcode byte of the stream selects a call
 // — guest memory writes (the lists and the data they point at), enqueue / enqueue-head with list

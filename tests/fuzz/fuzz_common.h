@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared pieces of the libFuzzer harnesses (docs/fuzzing.md): a forward byte reader, the work caps
 // that keep one input well under a second whatever it asks for, and a Renderer / ReplayTarget
 // pair that applies them.
@@ -63,7 +64,7 @@ private:
 //  - a .ppdmp file or a zip holding one (recognised by "PPSSPPGE" / "PK"), loaded as the tools do;
 //  - the "open" form, which leaves the records and payloads uncompressed so that mutations reach
 //    them instead of breaking a zstd stream: u8 version, u16 record count n, n records of 9 bytes
-//    (u8 type, u32 size, u32 ptr, as in the file, ppdmp-format.md §3.1), then the push buffer.
+//    (u8 type, u32 size, u32 ptr, as in the file, docs/ppdmp.md §3.1), then the push buffer.
 // fuzz_seeds writes every seed dump in the open form (toOpenForm).
 inline bool loadFuzzDump(const u8* data, size_t size, dump::Dump& d, std::string& err) {
     if (size >= 8 && std::memcmp(data, "PPSSPPGE", 8) == 0) return dump::loadDumpFromMemory(data, size, d, err);

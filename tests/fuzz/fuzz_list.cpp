@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (d): raw display lists executed from guest memory by a GeEngine drawing with the
 // software model (one thread): every command, flow control (JUMP/BJUMP/CALL/RET, SIGNAL with all
 // behaviours, END/FINISH), stall addresses moving in steps, pauses, draws, patches, immediate

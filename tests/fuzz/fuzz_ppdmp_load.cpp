@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (a): the .ppdmp / zip loader from bytes (hle/dump/ppdmp.h).
 //
 // Every input must either fail with a message or give a Dump whose payload() answers lie inside

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (c): dump replay with the GL translator ("GL exact") on an OSMesa context. Input as for
 // fuzz_replay_soft (a .ppdmp, a zip, or the open form of fuzz_common.h).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (b): dump replay with the software model. The bytes are loaded as a dump (a .ppdmp, a
 // zip holding one, or the uncompressed "open" form of fuzz_common.h) and replayed with replayDump on a GeEngine over soft::createSoftRenderer with one
 // thread (no worker threads: deterministic, and the sanitizers see every access on one stack).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (i): the save-state loader (hle/savestate.h) and the GE that runs from whatever state it
 // accepted. A blob that passes the checks must never lead the engine or the sceGe layer out of
 // bounds, and a loaded state must save and load again.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // fuzz_seeds: writes seed corpora for the harnesses that do not take a dump as such, from the
 // project's dumps (and any others given): each dump is replayed with the dump player on a
 // GeEngine whose renderer records, per distinct vertex format / texture format / patch, an input

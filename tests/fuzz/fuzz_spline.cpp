@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (g): Bezier and spline tessellation (geometry/spline.h): control-point counts, knot types,
 // divisions, PPM triangles/lines/points, PFACE, every VTYPE (indices, morphing, weights, colours,
 // normals generated for lighting), then the software model's transform of the output.

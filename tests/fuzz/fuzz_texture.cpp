@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (e): texture decoding — every texel format (and the undefined ones), CLUT loads and
 // lookups, swizzled storage, DXT1/3/5, all 8 levels — then the software model's texture cache and
 // sampler (level of detail, nearest/bilinear, wrap/clamp) at coordinates from the input.
@@ -71,7 +72,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     eng.execute(cmd(GE_CMD_TPF, fmt & 0xF));
     eng.execute(cmd(GE_CMD_TMODE, (flags >> 2 & 1) | ((flags >> 6 & 1) << 8) | (u32(flags >> 3 & 7) << 16)));
     // Levels of at most 256x256 (2^8): larger ones decode the same way, only slower (the replay
-    // harnesses reach the 512-texel saturation of §6.2).
+    // harnesses reach the 512-texel saturation of docs/ge-rules.md §6.2).
     u32 wlog = std::min<u32>(tsize & 0xF, 8), hlog = std::min<u32>(tsize >> 4, 8), bw = bufw, addr = base;
     for (int l = 0; l < 8; ++l) {
         eng.execute(cmd(u8(GE_CMD_TSIZE0 + l), wlog | (hlog << 8)));

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Harness (f): vertex decoding (every VTYPE: formats, morphing, skinning, indices), the shared
 // geometry (geometry/): transform, lighting and texture-coordinate generation, near clipping and
 // the discard rules, primitive assembly and the rasteriser's row bounds; BBOX; and, where the GL translator

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C++ wrapper header of an installed ge2gl compiles and links in a C++17 host: a null-backend
 // context created through ge2gl::Context (RAII over the C ABI).
 #include <ge2gl/ge2gl.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * install_consumer: a host built against an installed ge2gl, the way an emulator would build
  * (scripts/check_install.sh): through the CMake package (find_package(ge2gl) → ge2gl::ge2gl),

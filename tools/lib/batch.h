@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Batch runs of `ge2gl compare`: the command itself, its JSON results, sharding (--shard i/n) and
 // `ge2gl merge` of shard results, and the progress line on a terminal.
 //

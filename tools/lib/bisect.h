@@ -1,4 +1,5 @@
-// `ge2gl bisect`: the first draw after which two replays' VRAM differ (issue 15, accuracy tools).
+// SPDX-License-Identifier: MIT
+// `ge2gl bisect`: the first draw after which two replays' VRAM differ (accuracy tools).
 //
 // One lockstep replay: each side (DUMP on --backend A; DUMP on --ref-backend B, or --ref-dump
 // OTHER on A) replays on its own thread with a tools::DrawHook; after every draw each side syncs

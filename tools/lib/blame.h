@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl blame`: which draw last wrote each displayed pixel, and which draws own the pixels that
-// differ from a reference (issue 15, accuracy tools). Also the per-draw helpers `ge2gl bisect`
+// differ from a reference (accuracy tools). Also the per-draw helpers `ge2gl bisect`
 // shares (tools/lib/bisect.h): a one-line state summary, a draw's description.
 //
 // How ownership is found: the dump is replayed twice. The first replay, on the null backend, only

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl fuzz` (difffuzz.h).
 #include "tools/lib/difffuzz.h"
 

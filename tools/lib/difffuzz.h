@@ -1,4 +1,5 @@
-// `ge2gl fuzz`: a differential fuzzer (issue 15, accuracy tools). Each case is a small random but
+// SPDX-License-Identifier: MIT
+// `ge2gl fuzz`: a differential fuzzer (accuracy tools). Each case is a small random but
 // valid GE scene — state drawn from the field table's legal ranges, weighted toward what games use,
 // 1–4 PRIM draws of every primitive type and vertex format, a random texture of any format — made
 // with ListBuilder + DumpRecorder into an in-memory dump and rendered by two backends (gl exact 1x

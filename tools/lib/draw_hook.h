@@ -1,5 +1,6 @@
+// SPDX-License-Identifier: MIT
 // A Renderer between the engine and a backend that numbers the draws and lets a tool act on each
-// (accuracy tools, issue 15): `keep` decides whether draw n reaches the backend (render/compare
+// (accuracy tools): `keep` decides whether draw n reaches the backend (render/compare
 // --skip/--only), `after` runs once the backend has it (blame's per-draw ownership, bisect's
 // lockstep comparison). Draws are numbered from 1 in the order they reach the backend: PRIM,
 // BEZIER and SPLINE kicks with vertices, and immediate-mode primitives, in one sequence.

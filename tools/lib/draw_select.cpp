@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "tools/lib/draw_select.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Draw selection for `render`, `compare` and `bench` --skip / --only: comma-separated draw numbers
 // and ranges ("3,10-12"), draws numbered from 1 as --replay-end counts them (tools/lib/draw_hook.h).
 #pragma once

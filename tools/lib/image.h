@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Host image I/O and the accuracy measure used by `ge2gl compare` (PNG through libpng; other
 // file formats through OpenImageIO, loaded on first use).
 #pragma once

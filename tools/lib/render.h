@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Rendering a dump with a chosen backend: shared by the CLI, the tests and the benchmarks.
 #pragma once
 #include <functional>

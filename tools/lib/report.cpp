@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl report`: see report.h. The page is written by hand (no template engine): every text from
 // a dump, a path or a state summary goes through html() first.
 #include "tools/lib/report.h"

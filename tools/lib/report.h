@@ -1,4 +1,5 @@
-// `ge2gl report`: a static HTML page of a `ge2gl compare --json` run (issue 15, accuracy tools).
+// SPDX-License-Identifier: MIT
+// `ge2gl report`: a static HTML page of a `ge2gl compare --json` run (accuracy tools).
 //
 // Input: the JSON of one compare run, or the --json files of its shards (joined as `ge2gl merge`
 // joins them); optionally a second run (--before) to compare with. Each dump of the run is rendered

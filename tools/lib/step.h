@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // `ge2gl step DUMP --break KIND:N`: replays a dump on a backend and stops at one place with the GE
 // debugger (debugger/debugger.h): before the command, the state, list, disassembly, the draw's
 // vertices, texture and CLUT are taken; right after it has executed, the frame, depth and stencil

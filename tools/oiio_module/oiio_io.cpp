@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ge2gl's OpenImageIO module: reading and writing image formats other than PNG for the CLI and the
 // tests. Built as a separate shared object and loaded with dlopen on first use (tools/lib/image.cpp)
 // so that processes that only touch PNGs do not pay for OpenImageIO's dependency tree at start-up.
