@@ -490,6 +490,7 @@ ge2gl_status ge2gl_interrupt_ack(ge2gl_context* h) {
         Call c(h);
         if (!h->held) return c.error(GE2GL_ERR_BAD_STATE, "no interrupt is held");
         h->held = false;
+        h->sce->handlersReturned();
         return GE2GL_OK;
     });
 }

@@ -168,6 +168,7 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
         if (has12) {
             h->lazyWriteback = cfg->lazy_writeback != 0;
             h->holdInterrupts = cfg->hold_interrupts != 0;
+            h->sce->setHandlersDeferred(h->holdInterrupts);
             h->vramDirty = cfg->vram_dirty;
         }
         refreshSnapshot(h.get());
@@ -409,6 +410,14 @@ ge2gl_status ge2gl_get_cmd(ge2gl_context* h, uint32_t op, uint32_t* out_word) {
         Call c(h);
         if (!out_word) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_word is NULL");
         return c.sceResult(h->sce->getCmd(op, out_word), nullptr);
+    });
+}
+
+ge2gl_status ge2gl_set_sdk_version(ge2gl_context* h, uint32_t version) {
+    return guarded(h, [&]() -> ge2gl_status {
+        Call c(h);
+        h->sce->setSdkVersion(version);
+        return GE2GL_OK;
     });
 }
 

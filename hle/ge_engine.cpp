@@ -205,6 +205,16 @@ void GeEngine::matrixData(u8 op, u32 arg) {
     case GE_CMD_PROJD: m = state_.proj; idx = &state_.projNum; size = 16; break;
     default: m = state_.tgen; idx = &state_.tgenNum; size = 12; break;
     }
+    // What sceGeGetMtx reads back (GeState::visibleMtx): its own index rules.
+    switch (op) {
+    case GE_CMD_BONED: state_.visibleMtx[*idx & 0x7F] = arg; break;
+    case GE_CMD_WORLDD: state_.visibleMtx[96 + (*idx & 0xF)] = arg; break;
+    case GE_CMD_VIEWD: state_.visibleMtx[108 + (*idx & 0xF)] = arg; break;
+    case GE_CMD_PROJD: state_.visibleMtx[120 + (*idx & 0xF)] = arg; break;
+    default:
+        if ((*idx & 0xF) < 12) state_.visibleMtx[136 + (*idx & 0xF)] = arg;
+        break;
+    }
     // Data past the end is dropped for rendering; the index keeps counting (docs/ge-rules.md §3.4).
     if (*idx < size) {
         if (m[*idx] != v || std::signbit(m[*idx]) != std::signbit(v)) {
@@ -478,13 +488,21 @@ void GeEngine::doBBox(u32 arg) {
     const float y1 = float(std::max(state_.REGION1_y(), state_.SCISSOR1_y())) - 1 + offy;
     const float x2 = float(std::min(state_.REGION2_x(), state_.SCISSOR2_x())) + 1 + offx;
     const float y2 = float(std::min(state_.REGION2_y(), state_.SCISSOR2_y())) + 1 + offy;
-    if (x1 <= 0 || y1 <= 0 || x2 >= 4095 || y2 >= 4095) {
+    // The area reaching past the 4096-pixel coordinate space lets every box pass; reaching pixel
+    // 4095 does not (pspautotests gpu/bounding/viewport, OFFSETX 3615 with a 480-pixel region: the
+    // area's right edge at 4095 still culls; PPSSPP DrawEngineCommon::TestBoundingBox).
+    if (x1 < 1 || y1 < 1 || x2 >= 4096 || y2 >= 4096) {
         list_.bflg = true;
         return;
     }
     const float sx = state_.SX_value(), sy = state_.SY_value(), tx = state_.TX_value(), ty = state_.TY_value();
-    // Plane functions in clip space; a vertex is outside a plane when its value is negative.
-    u32 outsideAll = 0x1F;
+    // Plane functions in clip space; a vertex is outside a plane when its value is negative. The
+    // depth planes (z >= -w, z <= w) count only with depth clipping on (CMD_CLE): with it off
+    // (depth clamped), a box far beyond either depth plane still passes (pspautotests
+    // gpu/bounding/planes and viewport, "clamp"/"noclamp" cases; PPSSPP
+    // DrawEngineCommon::TestBoundingBox). docs/ge-rules.md §3.1.
+    const bool depthPlanes = state_.CLE_on();
+    u32 outsideAll = depthPlanes ? 0x3F : 0x0F;
     for (u32 i = first; i < last; ++i) {
         u32 index = i;
         if (isize) {
@@ -509,20 +527,27 @@ void GeEngine::doBBox(u32 arg) {
         if ((x2 - tx) * c[3] - sx * c[0] < 0) out |= 2;
         if (sy * c[1] + (ty - y1) * c[3] < 0) out |= 4;
         if ((y2 - ty) * c[3] - sy * c[1] < 0) out |= 8;
-        if (c[2] + c[3] < 0) out |= 16;  // beyond the near plane
+        if (depthPlanes && c[2] + c[3] < 0) out |= 16;  // beyond the near plane
+        if (depthPlanes && c[3] - c[2] < 0) out |= 32;  // beyond the far plane
         outsideAll &= out;
         if (!outsideAll) break;
     }
     list_.bflg = outsideAll == 0;
 }
 
+// A transfer base address in the window just above VRAM's mirrors (0x04800000-0x04FFFFFF) reads
+// and writes VRAM from its start again: the bit above the mirrors is dropped (pspautotests
+// gpu/transfer/invalid "0 bytes valid": 0x04800000 -> 0x04100000 copies what lies at 0x04000000;
+// PPSSPP GPUCommon::DoBlockTransfer clears bit 23 of such an address). docs/ge-rules.md §3.11.
+static u32 transferBase(u32 addr) { return (addr & 0x04800000) == 0x04800000 ? addr & ~0x00800000u : addr; }
+
 void GeEngine::doTransfer(u32 arg) {
     TransferPacket t;
-    t.src = state_.transferSrcAddr();
+    t.src = transferBase(state_.transferSrcAddr());
     t.srcStride = state_.transferSrcStride();
     t.srcX = state_.XPOS1_x();
     t.srcY = state_.XPOS1_y();
-    t.dst = state_.transferDstAddr();
+    t.dst = transferBase(state_.transferDstAddr());
     t.dstStride = state_.transferDstStride();
     t.dstX = state_.XPOS2_x();
     t.dstY = state_.XPOS2_y();

@@ -148,6 +148,8 @@ struct MatrixSlot {
     int count;
 };
 constexpr MatrixSlot kMatrixSlots[5] = {{0x2A, 0x2B, 96}, {0x3A, 0x3B, 12}, {0x3C, 0x3D, 12}, {0x3E, 0x3F, 16}, {0x40, 0x41, 12}};
+// Where each matrix starts in GeState::visibleMtx (bone, world, view, proj, tgen).
+constexpr u32 visibleBase(int m) { return m == 0 ? 0 : m == 1 ? 96 : m == 2 ? 108 : m == 3 ? 120 : 136; }
 }  // namespace
 
 void GeState::saveContext(u32 out[512]) const {
@@ -157,12 +159,15 @@ void GeState::saveContext(u32 out[512]) const {
     out[7] = offsetAddr;
     const auto& ops = geContextOpcodes();
     for (size_t i = 0; i < ops.size(); ++i) out[17 + i] = (u32(ops[i]) << 24) | (regs[ops[i]] & 0xFFFFFF);
-    const float* mats[5] = {bone, world, view, proj, tgen};
     const u32 nums[5] = {boneNum & 0x7F, worldNum & 0xF, viewNum & 0xF, projNum & 0xF, tgenNum & 0xF};
     u32 w = 226;
+    // The matrices as sceGeGetMtx reads them (visibleMtx), which is what the firmware saves: they
+    // differ from the ones drawn with only where a list wrote past a matrix's end (PPSSPP
+    // GPU/GPUState.cpp GEState::Save saves its CPU-visible copy too).
     for (int m = 0; m < 5; ++m) {
         out[w++] = u32(kMatrixSlots[m].numOp) << 24;
-        for (int k = 0; k < kMatrixSlots[m].count; ++k) out[w++] = (u32(kMatrixSlots[m].dataOp) << 24) | toFloat24(mats[m][k]);
+        for (int k = 0; k < kMatrixSlots[m].count; ++k)
+            out[w++] = (u32(kMatrixSlots[m].dataOp) << 24) | (visibleMtx[visibleBase(m) + u32(k)] & 0xFFFFFF);
     }
     for (int m = 0; m < 5; ++m) out[w++] = (u32(kMatrixSlots[m].numOp) << 24) | nums[m];
     out[w] = u32(GE_CMD_END) << 24;  // word 384
@@ -188,6 +193,8 @@ bool GeState::loadContext(const u32 in[512]) {
         for (int k = 0; k < kMatrixSlots[m].count; ++k, ++w) {
             if ((in[w] >> 24) != kMatrixSlots[m].dataOp) ok = false;
             mats[m][k] = float24(in[w]);
+            // Restoring writes through the data ports: drawn and read-back values agree again.
+            visibleMtx[visibleBase(m) + u32(k)] = in[w] & 0xFFFFFF;
         }
     }
     for (int m = 0; m < 5; ++m, ++w) {

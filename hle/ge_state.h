@@ -88,6 +88,15 @@ struct GeState {
     // GeEngine::latchVertexAttributes updates them after each PRIM.
     float latchUV[2] = {};
     float latchNormal[3] = {};
+    // What sceGeGetMtx reads: the float24 words as the matrix data ports wrote them, in a layout
+    // of its own (bone 0-95, world 96-107, view 108-119, proj 120-135, tgen 136-147). Writes past
+    // a matrix's end land here where rendering drops them: a bone or world/view index past the end
+    // runs on into the following matrices, the projection index wraps within its 16 words (the
+    // port keeps only its low 4 bits), the texgen matrix takes nothing past its 12 (pspautotests
+    // gpu/ge/get: 100 bone, 16 world/view, 20 projection words; PPSSPP GPU/Software/SoftGpu.cpp
+    // Execute_*MtxData, matrixVisible). docs/ge-rules.md §3.4.
+    static constexpr u32 kVisibleMtxWords = 148;
+    u32 visibleMtx[kVisibleMtxWords] = {};
 
     u32 op(u8 cmd) const { return regs[cmd] & 0xFFFFFF; }
 

@@ -17,6 +17,10 @@ constexpr u32 kFlagMemory = 1;
 
 constexpr u32 tag(const char (&s)[5]) { return u32(u8(s[0])) | u32(u8(s[1])) << 8 | u32(u8(s[2])) << 16 | u32(u8(s[3])) << 24; }
 constexpr u32 kEngine = tag("ENGN"), kSce = tag("SCGE"), kHost = tag("HOST");
+// Version 3's additions, in a section of their own after HOST so that a state without it (versions
+// 1 and 2) still reads: the read-back matrix words, which lists a signal paused, the old-SDK
+// suspended list waiting for its handler.
+constexpr u32 kV3 = tag("GEV3");
 constexpr u32 kRam = tag("RAM "), kVram = tag("VRAM"), kScratch = tag("SCRA");
 
 // Little-endian writer.
@@ -150,6 +154,12 @@ void getState(Reader& r, GeState& s, u32 version) {
         for (float& v : s.latchUV) v = r.f();
         for (float& v : s.latchNormal) v = r.f();
     }
+    // Until the state's GEV3 section (version 3) says otherwise, the read-back matrix words are
+    // the drawn ones.
+    const float* mats[5] = {s.bone, s.world, s.view, s.proj, s.tgen};
+    const u32 base[5] = {0, 96, 108, 120, 136}, count[5] = {96, 12, 12, 16, 12};
+    for (int m = 0; m < 5; ++m)
+        for (u32 k = 0; k < count[m]; ++k) s.visibleMtx[base[m] + k] = toFloat24(mats[m][k]);
     // A register word holds its own opcode in bits 31..24 (or 0 when never written).
     for (size_t op = 0; op < s.regs.size(); ++op) r.failIf(s.regs[op] != 0 && (s.regs[op] >> 24) != op);
 }
@@ -432,6 +442,12 @@ std::vector<u8> save(const GeEngine& engine, const SceGe& sce, const Memory* mem
     w.section(kEngine, [&] { putEngine(w, engine.saved()); });
     w.section(kSce, [&] { putSce(w, sce.saved(), engine.memory().edramTranslation()); });
     w.section(kHost, [&] { w.b(host.heldInterrupt); });
+    w.section(kV3, [&] {
+        for (u32 v : engine.state().visibleMtx) w.u32v(v);
+        const SceGe::Saved s = sce.saved();
+        for (const auto& dl : s.lists) w.b(dl.pausedBySignal);
+        w.s32v(s.suspendedSlot);
+    });
     if (mem) {
         w.section(kRam, [&] { putCompressed(w, mem->ram(), mem->ramSize()); });
         w.section(kVram, [&] { putCompressed(w, mem->vram(), Memory::kVramSize); });
@@ -466,7 +482,26 @@ bool load(std::span<const u8> blob, GeEngine& engine, SceGe& sce, Memory& mem, H
     const u32 want[] = {kEngine, kSce, kHost, kRam, kVram, kScratch};
     const size_t sections = withMemory ? 6 : 3;
     Reader top(payload.data(), payload.size());
+    // The optional GEV3 section that follows HOST.
+    auto readV3 = [&]() -> bool {
+        if (top.left() < 8) return true;
+        Reader peek = top;
+        if (peek.u32v() != kV3) return true;
+        const u32 n = peek.u32v();
+        const u8* body = peek.bytes(n);
+        if (!peek.ok()) return false;
+        top = peek;
+        Reader r(body, n);
+        for (u32& v : e.state.visibleMtx) v = r.u32v() & 0xFFFFFF;
+        for (auto& dl : s.lists) dl.pausedBySignal = r.b();
+        s.suspendedSlot = r.s32v();
+        return r.ok() && r.atEnd();
+    };
     for (size_t k = 0; k < sections; ++k) {
+        if (k == 3 && !readV3()) {
+            err = "save state section GEV3 is malformed";
+            return false;
+        }
         const u32 t = top.u32v(), n = top.u32v();
         const u8* body = top.bytes(n);
         if (!top.ok() || t != want[k]) {
@@ -487,6 +522,10 @@ bool load(std::span<const u8> blob, GeEngine& engine, SceGe& sce, Memory& mem, H
             err = "save state section " + std::to_string(k) + " is malformed (a value out of range or the wrong size)";
             return false;
         }
+    }
+    if (sections == 3 && !readV3()) {
+        err = "save state section GEV3 is malformed";
+        return false;
     }
     if (!top.atEnd()) {
         err = "save state has data after its last section";

@@ -25,7 +25,7 @@ namespace ge::savestate {
 
 // Version 2 added the vertex unit's latched UV and normal (GeState::latchUV/latchNormal) at the
 // end of the engine's state; version 1 blobs still load (the latch starts at zero).
-constexpr u32 kFormatVersion = 2;
+constexpr u32 kFormatVersion = 3;
 constexpr u32 kOldestFormatVersion = 1;
 constexpr u32 kHeaderSize = 32;
 

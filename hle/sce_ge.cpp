@@ -58,6 +58,7 @@ SceGe::Saved SceGe::saved() const {
     s.finishArg = finishArg_;
     s.finishPc = finishPc_;
     s.sdkVersion = sdkVersion_;
+    s.suspendedSlot = suspendedSlot_;
     return s;
 }
 
@@ -69,6 +70,7 @@ bool SceGe::validSaved(const Saved& s, std::string& why) {
             if (seen[size_t(i)]++) return why = "a list slot queued or freed twice", false;
         }
     if (s.active < -1 || s.active >= kMaxLists) return why = "the active slot is out of range", false;
+    if (s.suspendedSlot < -1 || s.suspendedSlot >= kMaxLists) return why = "the suspended slot is out of range", false;
     for (const DisplayList& dl : s.lists) {
         if (dl.state > SceListState::Completed) return why = "a list state out of range", false;
         if (dl.cbid < -1 || dl.cbid >= kMaxCallbacks) return why = "a callback ID out of range", false;
@@ -89,6 +91,7 @@ void SceGe::restore(const Saved& s) {
     finishArg_ = s.finishArg;
     finishPc_ = s.finishPc;
     sdkVersion_ = s.sdkVersion;
+    suspendedSlot_ = s.suspendedSlot;
     inRun_ = yield_ = inEngine_ = false;
     message_.clear();
 }
@@ -172,8 +175,10 @@ void SceGe::startFront() {
 }
 
 void SceGe::writeContext(u32 addr, const u32 ctx[512]) {
-    u8 bytes[2048];
-    for (int k = 0; k < 512; ++k) writeLE32(bytes + 4 * k, ctx[k]);
+    // The firmware writes the context up to its closing END (word 384) and leaves the rest of the
+    // 512-word buffer alone (pspautotests gpu/ge/context: word 386 keeps its 0xCCCCCCCC).
+    u8 bytes[385 * 4];
+    for (int k = 0; k < 385; ++k) writeLE32(bytes + 4 * k, ctx[k]);
     engine_.renderer()->syncMemoryForRead(addr, sizeof bytes);
     if (!engine_.memory().write(addr, bytes, sizeof bytes)) return;
     engine_.renderer()->memoryWritten(addr, sizeof bytes);
@@ -240,17 +245,29 @@ void SceGe::onSignal(u32 behaviour, u32 signalArg, u32 endArg, u32 pc) {
         const bool old = sdkOld();
         if (old) dl.state = SceListState::Paused;
         brokeInCallback_ = false;
+        if (old && handlersDeferred_) suspendedSlot_ = active_;
         if (listener_) listener_->onSignal(in);
-        if (old && dl.state == SceListState::Paused && !brokeInCallback_) dl.state = SceListState::Running;
+        if (old && !handlersDeferred_ && dl.state == SceListState::Paused && !brokeInCallback_) dl.state = SceListState::Running;
         break;
     }
     case 0x03:  // HANDLER_PAUSE, delivered at the FINISH: the list is paused before the callback
         dl.state = SceListState::Paused;
+        dl.pausedBySignal = true;
         if (listener_) listener_->onSignal(in);
         break;
     default:  // 0x02 HANDLER_CONTINUE: the GE resumes first, then the callback runs
         if (listener_) listener_->onSignal(in);
         break;
+    }
+}
+
+void SceGe::handlersReturned() {
+    // pspautotests gpu/signals/suspend: an old-SDK list reads PAUSED during its suspend handler
+    // and goes on once the handler returned, unless the handler broke it.
+    if (suspendedSlot_ >= 0) {
+        DisplayList& dl = lists_[size_t(suspendedSlot_)];
+        if (dl.state == SceListState::Paused && !brokeInCallback_) dl.state = SceListState::Running;
+        suspendedSlot_ = -1;
     }
 }
 
@@ -448,6 +465,9 @@ s32 SceGe::breakList(int mode) {
         if (inRun_ && active_ == i) engine_.requestPause();
         return idOf(i);
     case SceListState::Paused:
+        // Paused by a HANDLER_PAUSE signal the firmware answers busy, by a break already
+        // (pspautotests gpu/ge/break "Pause signal"; PPSSPP GPUCommon::Break).
+        if (dl.pausedBySignal) return fail(sce::kErrorBusy, "the current list is paused by a signal");
         return fail(sdkVersion_ > 0x02000010 ? sce::kErrorAlready : sce::kErrorBusy, "the current list is already paused");
     case SceListState::Queued: dl.state = SceListState::Paused; return idOf(i);
     default: return fail(newSdk ? sce::kErrorInvalidState : -1, "the current list cannot be paused");
@@ -462,6 +482,7 @@ s32 SceGe::continueList() {
     if (dl.state == SceListState::Paused) {
         // The engine is resumed by run() when it next looks at this list (safe from callbacks too).
         dl.state = SceListState::Running;
+        dl.pausedBySignal = false;
         return sce::kOk;
     }
     if (dl.state == SceListState::Running && pausePending(dl))
@@ -493,7 +514,8 @@ bool SceGe::busyDrawing() const { return !queue_.empty() && lists_[queue_.front(
 s32 SceGe::saveContext(u32 out[512]) {
     // The firmware refuses while the GE executes (uOFW returns -1, PPSSPP busy); a stalled list
     // still counts as executing.
-    if (busyDrawing()) return fail(sce::kErrorBusy, "cannot save the context while a list is drawing");
+    // pspautotests gpu/ge/context: -1 (the restore answers busy); uOFW sceGeSaveContext too.
+    if (busyDrawing()) return fail(-1, "cannot save the context while a list is drawing (the firmware returns -1)");
     engine_.state().saveContext(out);
     return sce::kOk;
 }
@@ -553,15 +575,16 @@ s32 SceGe::getCmd(u32 op, u32* out) const {
 
 s32 SceGe::getMtx(int type, u32 out[16], int* count) const {
     if (type < 0 || type >= 12) return fail(sce::kErrorInvalidIndex, fmt("matrix type %u is out of range 0-11", u32(type)));
+    // The words as the data ports wrote them, overflow included (GeState::visibleMtx).
     const GeState& st = engine_.state();
-    const float* m;
+    u32 base;
     int n = 12;
-    if (type < 8) m = st.bone + 12 * type;
-    else if (type == 8) m = st.world;
-    else if (type == 9) m = st.view;
-    else if (type == 10) m = st.proj, n = 16;
-    else m = st.tgen;
-    for (int k = 0; k < n; ++k) out[k] = toFloat24(m[k]);
+    if (type < 8) base = 12 * u32(type);
+    else if (type == 8) base = 96;
+    else if (type == 9) base = 108;
+    else if (type == 10) base = 120, n = 16;
+    else base = 136;
+    for (int k = 0; k < n; ++k) out[k] = st.visibleMtx[base + u32(k)];
     if (count) *count = n;
     return sce::kOk;
 }

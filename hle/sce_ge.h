@@ -123,6 +123,11 @@ public:
     void setListener(SceGeListener* l) { listener_ = l; }
     // sceKernelGetCompiledSdkVersion() of the game: selects old-SDK behaviours (ge-rules.md §4.4, §4.7).
     void setSdkVersion(u32 v) { sdkVersion_ = v; }
+    // The host runs the game's signal and finish handlers after the callback returns (the plugin
+    // API's hold_interrupts): what the firmware does when a handler returns waits for
+    // handlersReturned() instead of happening when the callback returns.
+    void setHandlersDeferred(bool on) { handlersDeferred_ = on; }
+    void handlersReturned();
     u32 sdkVersion() const { return sdkVersion_; }
     // Commands a wait-mode sync may execute before it gives up with kWouldBlock.
     void setWaitBudget(u64 n) { waitBudget_ = n ? n : 1; }
@@ -198,6 +203,7 @@ public:
         u32 contextAddr = 0, numStacks = 32, stackAddr = 0;
         bool started = false;  // it has run: its execution registers live in `regs` or the engine
         bool hung = false;
+        bool pausedBySignal = false;  // Paused by a SIGNAL HANDLER_PAUSE (not by sceGeBreak)
         ListRegs regs;
         u32 offset = 0, base = 0;
         u64 cycles = 0;  // GE time spent running this list (PPSSPP's GetListTicks)
@@ -217,6 +223,7 @@ public:
         bool brokeInCallback = false, finishPending = false;
         u32 finishArg = 0, finishPc = 0;
         u32 sdkVersion = kDefaultSdkVersion;  // the game's; the host's wait budget is not state
+        int suspendedSlot = -1;
     };
     Saved saved() const;
     // Checks the queue and slot structure (false with `why` when it is not one SceGe could reach)
@@ -266,6 +273,8 @@ private:
     bool yield_ = false, inEngine_ = false;
     u32 finishArg_ = 0, finishPc_ = 0;
     u32 sdkVersion_ = kDefaultSdkVersion;
+    bool handlersDeferred_ = false;
+    int suspendedSlot_ = -1;  // an old-SDK HANDLER_SUSPEND list reading PAUSED until its handler returns
     u64 waitBudget_ = u64(1) << 26;
     u64 tickStop_ = ~u64(0);
     mutable std::string message_;

@@ -23,7 +23,7 @@ struct Event {
 
 class Host {
 public:
-    explicit Host(int backend = GE2GL_BACKEND_NULL, uint32_t sdk = 0, bool worker = false)
+    explicit Host(int backend = GE2GL_BACKEND_NULL, uint32_t sdk = 0, bool worker = false, bool hold = false)
         : ram(kRamSize), vram(0x200000) {
         ge2gl_config cfg;
         ge2gl_config_init(&cfg);
@@ -33,6 +33,7 @@ public:
         cfg.backend = backend;
         cfg.sdk_version = sdk;
         cfg.worker_thread = worker ? 1 : 0;
+        cfg.hold_interrupts = hold ? 1 : 0;
         cfg.wait_budget = 1u << 20;
         cfg.callbacks.user = this;
         cfg.callbacks.signal = [](void* u, const ge2gl_interrupt* i) { static_cast<Host*>(u)->interrupt('S', *i); };

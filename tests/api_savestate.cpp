@@ -193,8 +193,8 @@ TEST(SaveState, CorruptOrForeignBlobsAreRefusedAndChangeNothing) {
     b[0] = 'X';
     refused(b, "not a ge2gl save state");
     b = good;
-    b[8] = 3;  // format version 3
-    refused(b, "version 3");
+    b[8] = 4;  // format version 4
+    refused(b, "version 4");
     // Well signed, but values no GE can hold: the engine section's CALL depth (payload: tag 4,
     // size 4, registers 1024, matrices 592, indices and addresses 32, palette 1024, its count 4,
     // the vertex latch 20, pc 4, stall 4, call stack 16) set to 3, beyond the GE's two levels.
@@ -231,7 +231,7 @@ TEST(SaveState, CorruptOrForeignBlobsAreRefusedAndChangeNothing) {
         ge2gl_context* old = createHandle(GE2GL_BACKEND_SOFT);
         ASSERT_NE(old, nullptr);
         EXPECT_EQ(ge2gl_state_load(old, v1.data(), v1.size()), GE2GL_OK) << ge2gl_last_message(old);
-        // Saved again it is the version-2 state it came from (this list never drew: latch zero).
+        // Saved again it is the current-version state it came from (this list never drew: latch zero).
         EXPECT_EQ(saveBytes(old, 0), good);
         ge2gl_destroy(old);
     }

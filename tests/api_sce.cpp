@@ -757,6 +757,74 @@ int32_t runList(Host& host, uint32_t at, const ge2gl_list_args* args = nullptr) 
 
 }  // namespace
 
+// pspautotests gpu/ge/break "Pause signal", as a PSP answered: sceGeBreak(0) on a list that a
+// HANDLER_PAUSE signal paused is busy (0x80000021), on one a break paused already (0x80000020);
+// after sceGeContinue the list completes.
+TEST(ApiSignal, BreakOnASignalPausedListIsBusy) {
+    Host host(GE2GL_BACKEND_NULL, 0x06060010);
+    ListWriter L(host, L0);
+    L.put(0, 0);
+    L.signal(0x03, 0);  // HANDLER_PAUSE: pauses at the next FINISH
+    L.put(0, 0);
+    L.finish();
+    int32_t id = -1, brk = -1;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, L0, 0, -1, nullptr, &id), GE2GL_OK);
+    host.run();
+    EXPECT_EQ(host.peek(id), GE2GL_LIST_PAUSED);
+    EXPECT_EQ(ge2gl_break(host.h, 0, &brk), GE2GL_SCE_ERROR_BUSY);
+    ASSERT_EQ(ge2gl_continue(host.h), GE2GL_OK);
+    host.run();
+    EXPECT_EQ(host.peek(id), GE2GL_LIST_COMPLETED);
+    // Paused by a break instead: already.
+    ListWriter S(host, 0x08120000);
+    S.put(0, 0);
+    S.finish();
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, 0x08120000, 0x08120000, -1, nullptr, &id), GE2GL_OK);
+    ASSERT_EQ(ge2gl_break(host.h, 0, &brk), GE2GL_OK);
+    EXPECT_EQ(ge2gl_break(host.h, 0, &brk), GE2GL_SCE_ERROR_ALREADY);
+}
+
+// pspautotests gpu/ge/queue switches the SDK version at run time: with 0 (no version, an old
+// SDK) the same list may be queued twice, with 2.00 the second enqueue is busy.
+TEST(ApiSdk, SetSdkVersionTakesEffectAtTheNextCall) {
+    Host host(GE2GL_BACKEND_NULL, 0x06060010);
+    ListWriter L(host, L0);
+    L.finish();
+    int32_t a = -1, b = -1;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, L0, L0, -1, nullptr, &a), GE2GL_OK);
+    EXPECT_EQ(ge2gl_list_enqueue(host.h, L0, L0, -1, nullptr, &b), GE2GL_SCE_ERROR_BUSY);
+    ASSERT_EQ(ge2gl_set_sdk_version(host.h, 0), GE2GL_OK);
+    EXPECT_EQ(ge2gl_list_enqueue(host.h, L0, L0, -1, nullptr, &b), GE2GL_OK);
+    EXPECT_NE(a, b);
+    ASSERT_EQ(ge2gl_set_sdk_version(host.h, 0x02000000), GE2GL_OK);
+    int32_t c = -1;
+    EXPECT_EQ(ge2gl_list_enqueue(host.h, L0, L0, -1, nullptr, &c), GE2GL_SCE_ERROR_BUSY);
+    EXPECT_EQ(ge2gl_set_sdk_version(nullptr, 0), GE2GL_ERR_INVALID_HANDLE);
+}
+
+// pspautotests gpu/signals/suspend on a PSP (old SDK): the list reads PAUSED while its suspend
+// handler runs and DRAWING again after. With hold_interrupts the host runs the handler after the
+// callback, so the PAUSED state lasts until ge2gl_interrupt_ack.
+TEST(ApiSignal, OldSdkSuspendReadsPausedUntilTheHeldHandlerReturns) {
+    Host host(GE2GL_BACKEND_NULL, 0x02000010, false, true);
+    ListWriter L(host, L0);
+    L.signal(0x01, 5);
+    L.put(TEC, 1);
+    L.finish();
+    int32_t id = -1;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, L0, 0, -1, nullptr, &id), GE2GL_OK);
+    ge2gl_run_info info{};
+    ASSERT_EQ(ge2gl_run(host.h, 1000, &info), GE2GL_OK);
+    EXPECT_EQ(info.ge_state, GE2GL_GE_INTERRUPT);
+    EXPECT_EQ(host.peek(id), GE2GL_LIST_PAUSED);
+    ASSERT_EQ(ge2gl_interrupt_ack(host.h), GE2GL_OK);
+    EXPECT_EQ(host.peek(id), GE2GL_LIST_DRAWING);
+    ASSERT_EQ(ge2gl_run(host.h, 1000, &info), GE2GL_OK);  // to the finish, held
+    ASSERT_EQ(ge2gl_interrupt_ack(host.h), GE2GL_OK);
+    EXPECT_EQ(host.peek(id), GE2GL_LIST_COMPLETED);
+    EXPECT_EQ(host.cmd(TEC), word(TEC, 1));
+}
+
 TEST(ApiContext, SaveRestoreRoundTripsRegistersAndMatrices) {
     Host host;
     writeStateList(host, L0, 1);
@@ -766,7 +834,15 @@ TEST(ApiContext, SaveRestoreRoundTripsRegistersAndMatrices) {
     EXPECT_EQ(s1.cmds[0xCA], word(0xCA, (1 * 0x9E3779B1u + 0xCAu * 0x01010101u) & 0xFFFFFF));
     std::array<uint32_t, 512> ctx{};
     ASSERT_EQ(ge2gl_save_context(host.h, ctx.data()), GE2GL_OK);
+    // In guest memory the context ends with its END word (384): a PSP leaves the rest of the
+    // 512-word buffer alone (pspautotests gpu/ge/context checks word 386).
+    for (uint32_t k = 380; k < 512; ++k) host.write32(0x08200000 + 4 * k, 0xCCCCCCCC);
     ASSERT_EQ(ge2gl_save_context_at(host.h, 0x08200000), GE2GL_OK);
+    uint32_t tail[3];
+    ASSERT_EQ(ge2gl_mem_read(host.h, 0x08200000 + 4 * 384, tail, sizeof tail), GE2GL_OK);
+    EXPECT_EQ(tail[0], 0x0C000000u);
+    EXPECT_EQ(tail[1], 0xCCCCCCCCu);
+    EXPECT_EQ(tail[2], 0xCCCCCCCCu);
 
     runList(host, 0x08140000);
     const Snapshot s2 = snapshot(host);
@@ -799,13 +875,16 @@ TEST(ApiContext, SaveRestoreRoundTripsRegistersAndMatrices) {
     EXPECT_EQ(ge2gl_save_context_at(host.h, 0x083FFF00), GE2GL_SCE_ERROR_BAD_POINTER);  // runs past RAM
     EXPECT_EQ(ge2gl_restore_context_at(host.h, 0x00000000), GE2GL_SCE_ERROR_BAD_POINTER);
 
-    // Busy while a list is drawing (stalled counts as drawing).
+    // Busy while a list is drawing (stalled counts as drawing): the save answers -1 as the firmware
+    // does (pspautotests gpu/ge/context), the restore busy.
     int32_t id;
     ListWriter L(host, 0x08150000);
     L.put(TEC, 1);
     L.finish();
     ASSERT_EQ(ge2gl_list_enqueue(host.h, 0x08150000, 0x08150000, -1, nullptr, &id), GE2GL_OK);
-    EXPECT_EQ(ge2gl_save_context(host.h, ctx.data()), GE2GL_SCE_ERROR_BUSY);
+    EXPECT_EQ(ge2gl_save_context(host.h, ctx.data()), ge2gl_status(-1));
+    EXPECT_EQ(ge2gl_save_context_at(host.h, 0x08200000), ge2gl_status(-1));
+    EXPECT_STRNE(ge2gl_last_message(host.h), "");
     EXPECT_EQ(ge2gl_restore_context(host.h, ctx.data()), GE2GL_SCE_ERROR_BUSY);
 }
 

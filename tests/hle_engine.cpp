@@ -331,6 +331,35 @@ TEST_F(EngineTest, MatrixUploadCountsAndDropsOverflow) {
     EXPECT_EQ(eng.state().boneNum, 13u);
 }
 
+// What sceGeGetMtx reads after pspautotests gpu/ge/get's uploads (values a PSP printed): 100
+// bone words (96-99 run into the world words, rewritten after), 16 world and 16 view words (12-15
+// run into the next matrix), 20 projection words (16-19 wrap onto 0-3), 16 texgen words (12-15
+// dropped). Rendering keeps only each matrix's own words.
+TEST_F(EngineTest, ReadBackMatrixWordsOverflowAsOnAPsp) {
+    std::vector<u32> words = {W(GE_CMD_BONEN, 0)};
+    for (u32 i = 0; i < 100; ++i) words.push_back(W(GE_CMD_BONED, i));
+    const u8 ports[4][2] = {{GE_CMD_WORLDN, GE_CMD_WORLDD}, {GE_CMD_VIEWN, GE_CMD_VIEWD}, {GE_CMD_PROJN, GE_CMD_PROJD}, {GE_CMD_TGENN, GE_CMD_TGEND}};
+    for (int m = 0; m < 4; ++m) {
+        words.push_back(W(ports[m][0], 0));
+        for (u32 i = 0; i < (m == 2 ? 20u : 16u); ++i) words.push_back(W(ports[m][1], i));
+    }
+    words.push_back(W(GE_CMD_FINISH));
+    words.push_back(W(GE_CMD_END));
+    for (size_t i = 0; i < words.size(); ++i) mem.write32(kList + u32(4 * i), words[i]);
+    runAt(kList);
+    const GeState& st = eng.state();
+    for (u32 i = 0; i < 96; ++i) EXPECT_EQ(st.visibleMtx[i], i) << "bone " << i;
+    for (u32 i = 0; i < 12; ++i) {
+        EXPECT_EQ(st.visibleMtx[96 + i], i) << "world " << i;
+        EXPECT_EQ(st.visibleMtx[108 + i], i) << "view " << i;
+        EXPECT_EQ(st.visibleMtx[136 + i], i) << "tgen " << i;
+    }
+    for (u32 i = 0; i < 4; ++i) EXPECT_EQ(st.visibleMtx[120 + i], 16 + i) << "proj " << i;
+    for (u32 i = 4; i < 16; ++i) EXPECT_EQ(st.visibleMtx[120 + i], i) << "proj " << i;
+    EXPECT_EQ(st.proj[0], float24(0));  // drawn with the first 16 words only
+    EXPECT_EQ(st.projNum, 20u);
+}
+
 TEST_F(EngineTest, ClutLoadCopiesBlocks) {
     for (u32 i = 0; i < 1024; ++i) mem.write8(0x08900000 + i, u8(i * 7));
     put(kList, {W(GE_CMD_CBW, 0x080000), W(GE_CMD_CBP, 0x900000), W(GE_CMD_CLOAD, 2), W(GE_CMD_FINISH), W(GE_CMD_END)});
@@ -382,6 +411,23 @@ TEST_F(EngineTest, TransferPacketIsResolved) {
     EXPECT_EQ(t.width, 32u);
     EXPECT_EQ(t.height, 16u);
     EXPECT_EQ(t.bpp, 4u);
+}
+
+// pspautotests gpu/transfer/invalid on a PSP: a base address at 0x04800000 (one past the last
+// mirror) copies from / to the start of VRAM; 0x047FFFF0 stays as it is (its rows wrap instead).
+TEST_F(EngineTest, TransferBaseJustAboveTheMirrorsDropsBit23) {
+    put(kList, {W(GE_CMD_XBP1, 0x800000), W(GE_CMD_XBW1, 0x040000 | 512), W(GE_CMD_XBP2, 0x100000),
+                W(GE_CMD_XBW2, 0x040000 | 512), W(GE_CMD_XPOS1, 0), W(GE_CMD_XPOS2, 0),
+                W(GE_CMD_XSIZE, (15 << 10) | 511), W(GE_CMD_XSTART, 0), W(GE_CMD_XBP1, 0x100000),
+                W(GE_CMD_XBP2, 0x800000), W(GE_CMD_XSTART, 0), W(GE_CMD_XBP1, 0x7FFFF0), W(GE_CMD_XBW1, 0x040000 | 512),
+                W(GE_CMD_XSTART, 0), W(GE_CMD_FINISH), W(GE_CMD_END)});
+    runAt(kList);
+    ASSERT_EQ(rec.transfers.size(), 3u);
+    EXPECT_EQ(rec.transfers[0].src, 0x04000000u);
+    EXPECT_EQ(rec.transfers[0].dst, 0x04100000u);
+    EXPECT_EQ(rec.transfers[1].src, 0x04100000u);
+    EXPECT_EQ(rec.transfers[1].dst, 0x04000000u);
+    EXPECT_EQ(rec.transfers[2].src, 0x047FFFF0u);
 }
 
 TEST_F(EngineTest, DirtyGroupsOnlyOnChange) {

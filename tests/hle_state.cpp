@@ -148,6 +148,15 @@ TEST(Context, LayoutAndRoundTrip) {
     for (int i = 0; i < 96; ++i) st.bone[i] = float(i) * 0.5f;
     for (int i = 0; i < 12; ++i) st.world[i] = float(i) + 100, st.view[i] = -float(i), st.tgen[i] = float(i) * 3;
     for (int i = 0; i < 16; ++i) st.proj[i] = float(i) * 0.25f;
+    // The context holds the matrices as the data ports last wrote them (GeState::visibleMtx):
+    // here the same values as the drawn ones.
+    for (int i = 0; i < 96; ++i) st.visibleMtx[i] = toFloat24(st.bone[i]);
+    for (int i = 0; i < 12; ++i) {
+        st.visibleMtx[96 + i] = toFloat24(st.world[i]);
+        st.visibleMtx[108 + i] = toFloat24(st.view[i]);
+        st.visibleMtx[136 + i] = toFloat24(st.tgen[i]);
+    }
+    for (int i = 0; i < 16; ++i) st.visibleMtx[120 + i] = toFloat24(st.proj[i]);
     st.boneNum = 130;  // stored masked to 7 bits
     st.worldNum = 13;
     st.vertexAddr = 0x08812340;
@@ -174,6 +183,7 @@ TEST(Context, LayoutAndRoundTrip) {
     for (int i = 0; i < 16; ++i) EXPECT_EQ(back.proj[i], st.proj[i]);
     EXPECT_EQ(back.worldNum, 13u);
     EXPECT_EQ(back.vertexAddr, st.vertexAddr);
+    for (u32 i = 0; i < GeState::kVisibleMtxWords; ++i) EXPECT_EQ(back.visibleMtx[i], st.visibleMtx[i]) << i;
     ctx[300] = 0x12345678;  // wrong opcode inside the bone data
     EXPECT_FALSE(back.loadContext(ctx));
 }

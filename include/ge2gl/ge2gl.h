@@ -274,6 +274,11 @@ GE2GL_API ge2gl_status ge2gl_save_context_at(ge2gl_context* h, uint32_t guest_ad
 GE2GL_API ge2gl_status ge2gl_restore_context_at(ge2gl_context* h, uint32_t guest_addr);
 /* sceGeGetCmd: the register word of opcode op (0-0xFE). */
 GE2GL_API ge2gl_status ge2gl_get_cmd(ge2gl_context* h, uint32_t op, uint32_t* out_word);
+/* API 1.4: the game's sceKernelGetCompiledSdkVersion() changed (a game may set it at run time with
+   sceKernelSetCompiledSdkVersion*): behaviours that depend on it follow from the next call. 0 is
+   the value of a program built without one, which the firmware treats as an old SDK (unlike
+   config.sdk_version, where 0 asks for the default). */
+GE2GL_API ge2gl_status ge2gl_set_sdk_version(ge2gl_context* h, uint32_t version);
 /* API 1.4: every register word at once, out[op] as ge2gl_get_cmd gives it for op 0-0xFE (out[0xFF]
    is 0): one call for a host that keeps its own copy of the register file (an emulator whose
    other parts read its GE state struct) and refreshes it after each run. */

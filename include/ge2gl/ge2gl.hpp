@@ -138,6 +138,7 @@ public:
     Result<uint32_t> getCmd(uint32_t op) {
         return call<uint32_t>([&](uint32_t* v) { return ge2gl_get_cmd(h_, op, v); });
     }
+    Status setSdkVersion(uint32_t version) { return {ge2gl_set_sdk_version(h_, version)}; }
     Result<std::array<uint32_t, 256>> getRegisters() {
         return call<std::array<uint32_t, 256>>([&](std::array<uint32_t, 256>* v) { return ge2gl_get_registers(h_, v->data()); });
     }

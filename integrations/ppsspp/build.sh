@@ -24,7 +24,7 @@ mkdir -p "$2"
 out=$(cd "$2" && pwd)
 jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 [ -f "$src/GPU/GPUCommon.h" ] || { echo "build.sh: $src is not a PPSSPP source tree" >&2; exit 2; }
-for sub in ext/glslang ext/SPIRV-Cross ext/armips ext/rcheevos ext/naett ext/lua ext/libchdr ext/cpu_features; do
+for sub in ext/glslang ext/SPIRV-Cross ext/armips ext/rcheevos ext/naett ext/lua ext/libchdr ext/cpu_features ext/miniupnp; do
   [ -n "$(ls -A "$src/$sub" 2>/dev/null)" ] || { echo "build.sh: $src/$sub is empty: PPSSPP needs its submodules (README.md)" >&2; exit 2; }
 done
 
@@ -41,8 +41,12 @@ if ! pkg-config --exists sdl3 2>/dev/null; then
   echo "SDL3 not found: building PPSSPPHeadless without it (README.md, 'Without SDL3')"
   edit_flags+=(--without-sdl)
   without_sdl=ON
+  # Without SDL nothing brings libGL to the link after PPSSPP's static libraries: legacy libGL and
+  # --no-as-needed keep the GL library its Common code calls into on the executable's link line.
+  link_flags=(-DOpenGL_GL_PREFERENCE=LEGACY "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--no-as-needed")
 else
   without_sdl=OFF
+  link_flags=()
 fi
 python3 "$here/edit_ppsspp.py" "$src" "${edit_flags[@]}"
 
@@ -51,7 +55,7 @@ cmake -S "$src" -B "$out/ppsspp-build" -G Ninja -DCMAKE_BUILD_TYPE="${PPSSPP_BUI
   -DHEADLESS=ON -DUNITTEST=OFF -DUSE_FFMPEG=OFF -DUSE_DISCORD=OFF -DUSE_MINIUPNPC=OFF \
   -DUSE_SYSTEM_ZSTD=ON -DUSE_SYSTEM_FREETYPE=ON -DUSE_SYSTEM_LIBZIP=ON -DUSE_SYSTEM_SNAPPY=ON \
   -DUSE_SYSTEM_RAPIDJSON=ON -DUSE_SYSTEM_LIBCHDR=OFF -DGE2GL_HEADLESS_WITHOUT_SDL="$without_sdl" \
-  -DCMAKE_PREFIX_PATH="$out/ge2gl-prefix" -Wno-dev >/dev/null
+  -DCMAKE_PREFIX_PATH="$out/ge2gl-prefix" "${link_flags[@]}" -Wno-dev >/dev/null
 ninja -C "$out/ppsspp-build" -j"$jobs" PPSSPPHeadless
 ln -sfn "$out/ppsspp-build/PPSSPPHeadless" "$out/PPSSPPHeadless"
 "$out/PPSSPPHeadless" --help 2>&1 | grep -q "ge2gl" || { echo "build.sh: the built PPSSPPHeadless does not know --graphics=ge2gl" >&2; exit 1; }

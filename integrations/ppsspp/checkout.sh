@@ -59,6 +59,7 @@ clone hrydgard/ppsspp-lua "$dest/ext/lua" "$(pin ext/lua)"
 clone rtissera/libchdr "$dest/ext/libchdr" "$(pin ext/libchdr)"
 clone Kethen/aemu_postoffice "$dest/ext/aemu_postoffice" "$(pin ext/aemu_postoffice)"
 clone google/cpu_features "$dest/ext/cpu_features" "$(pin ext/cpu_features)"
+clone miniupnp/miniupnp "$dest/ext/miniupnp" "$(pin ext/miniupnp)"  # headers only (USE_MINIUPNPC=OFF)
 clone KhronosGroup/OpenXR-SDK "$dest/ext/OpenXR-SDK" "$(pin ext/OpenXR-SDK)"
 clone hrydgard/nanosvg "$dest/ext/nanosvg" "$(pin ext/nanosvg)" memononen/nanosvg 66579081d84b613daa49a64f76357ce65925e13b
 echo "checkout.sh: $dest is PPSSPP $ppsspp_commit with the submodules PPSSPPHeadless needs"

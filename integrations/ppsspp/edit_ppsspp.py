@@ -80,6 +80,18 @@ def replace(root, rel, anchor, new, done_marker):
     return True
 
 
+def replace_all(root, rel, anchor, new, count, done_marker):
+    """Replaces each of the `count` occurrences of `anchor` (a line PPSSPP repeats)."""
+    text = read(root, rel)
+    if text.count(done_marker) >= count:
+        return False
+    n = text.count(anchor)
+    if n != count:
+        raise EditError(f"{rel}: anchor {anchor!r} found {n} times (expected {count})")
+    write(root, rel, text.replace(anchor, new))
+    return True
+
+
 def make_virtual(root, rel, names):
     """Puts `virtual` before the member declarations of `names` (one line each, tab-indented)."""
     text = read(root, rel)
@@ -200,7 +212,11 @@ def without_sdl_edits(root):
                   "add_compile_definitions(GE2GL_HEADLESS_WITHOUT_SDL)")
     yield replace(root, "headless/Headless.cpp", "#elif PPSSPP_ARCH(LOONGARCH64)\n",
                   "#elif PPSSPP_ARCH(LOONGARCH64) || defined(GE2GL_HEADLESS_WITHOUT_SDL)  // ge2gl\n",
-                  "defined(GE2GL_HEADLESS_WITHOUT_SDL)")
+                  "defined(GE2GL_HEADLESS_WITHOUT_SDL)  // ge2gl\n")
+    # ... and skips the hidden window the GL/Vulkan contexts need (made and destroyed in main()).
+    yield replace_all(root, "headless/Headless.cpp", "#if PPSSPP_PLATFORM(ANDROID) || PPSSPP_ARCH(LOONGARCH64)\n",
+                      "#if PPSSPP_PLATFORM(ANDROID) || PPSSPP_ARCH(LOONGARCH64) || defined(GE2GL_HEADLESS_WITHOUT_SDL)  // ge2gl\n",
+                      2, "#if PPSSPP_PLATFORM(ANDROID) || PPSSPP_ARCH(LOONGARCH64) || defined(GE2GL_HEADLESS_WITHOUT_SDL)")
 
 
 def main(argv):

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "Common/Data/Text/StringWriter.h"
@@ -151,7 +152,15 @@ GPU_Ge2gl::GPU_Ge2gl(GraphicsContext *gfxCtx, Draw::DrawContext *draw)
     sliceEvent_ = CoreTiming::RegisterEvent("Ge2glSlice", &SliceEvent);
     interruptEvent_ = CoreTiming::RegisterEvent("Ge2glInterrupt", &InterruptEvent);
     EnsureIntrHandler();
+    SyncSdkVersion();
     RefreshRegisters();
+    // GE2GL_RECORD=FILE: everything this core's GE executes, written as a .ppdmp frame dump when
+    // the emulation stops (ge2gl_record_*), for `ge2gl render`/`compare`/`bisect` on the same GE
+    // work outside PPSSPP.
+    if (const char *path = getenv("GE2GL_RECORD"); path && *path) {
+        if (ge2gl_record_begin(ge_, path) == GE2GL_OK) recording_ = true;
+        else ERROR_LOG(Log::G3D, "ge2gl: GE2GL_RECORD: %s", ge2gl_last_message(ge_));
+    }
 
     if (gfxCtx && draw) {
         presentation_ = new PresentationCommon(draw_);
@@ -162,6 +171,10 @@ GPU_Ge2gl::GPU_Ge2gl(GraphicsContext *gfxCtx, Draw::DrawContext *draw)
 }
 
 GPU_Ge2gl::~GPU_Ge2gl() {
+    if (recording_) {
+        if (displayFramebuf_) ge2gl_record_display(ge_, displayFramebuf_, displayStride_, int32_t(displayFormat_));
+        if (ge2gl_record_end(ge_) != GE2GL_OK) ERROR_LOG(Log::G3D, "ge2gl: GE2GL_RECORD: %s", ge2gl_last_message(ge_));
+    }
     link_->core = nullptr;
     if (g_active == this) g_active = nullptr;
     if (frameTexture_) frameTexture_->Release();
@@ -192,6 +205,15 @@ int32_t GPU_Ge2gl::Reported(int32_t s, const char *what) const {
 
 // ---------------------------------------------------------------------------------------------
 // Running the GE.
+
+void GPU_Ge2gl::SyncSdkVersion() {
+    // Games may change it at run time (sceKernelSetCompiledSdkVersion*; pspautotests gpu/ge/queue
+    // switches between 0 and 2.00 to test both behaviours).
+    const uint32_t v = uint32_t(sceKernelGetCompiledSdkVersion());
+    if (v == sdkVersion_ || !ge_) return;
+    sdkVersion_ = v;
+    ge2gl_set_sdk_version(ge_, v);
+}
 
 void GPU_Ge2gl::RunGe() {
     if (!ge_ || running_) return;
@@ -295,6 +317,16 @@ bool GPU_Ge2gl::PendingFor(int32_t id) const {
     return false;
 }
 
+// A sync call does not wait for an interrupt that is already due: on a PSP it would have run the
+// moment the GE raised it, before the CPU got to the call; here it runs once the call returns, as
+// with PPSSPP's own GE (pspautotests gpu/bounding/*: sceGuSync right after a short list does not
+// reschedule). id < 0: any list.
+bool GPU_Ge2gl::PendingLater(int32_t id, int64_t now) const {
+    for (const Pending &p : pending_)
+        if ((id < 0 || p.listId == id) && p.cpuTick > now) return true;
+    return false;
+}
+
 // Threads waiting in sceGeListSync / sceGeDrawSync wake once their list is gone or complete and
 // its finish interrupt has been handled (the firmware wakes them from that interrupt).
 void GPU_Ge2gl::ResolveWaits() {
@@ -345,6 +377,7 @@ void GPU_Ge2gl::ReapplyGfxState() {
 // sceGe in the game's terms.
 
 int32_t GPU_Ge2gl::SceEnqueue(uint32_t list, uint32_t stall, int32_t cbid, uint32_t argsAddr, bool head) {
+    SyncSdkVersion();
     ge2gl_list_args args{};
     const ge2gl_list_args *pargs = nullptr;
     if (argsAddr != 0 && Memory::IsValidRange(argsAddr, 16)) {
@@ -368,18 +401,21 @@ int32_t GPU_Ge2gl::SceEnqueue(uint32_t list, uint32_t stall, int32_t cbid, uint3
 }
 
 int32_t GPU_Ge2gl::SceDequeue(int32_t id) {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_list_dequeue(ge_, id);
     RunGe();
     return s == GE2GL_OK ? 0 : Reported(s, "list_dequeue");
 }
 
 int32_t GPU_Ge2gl::SceUpdateStall(int32_t id, uint32_t stall) {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_list_update_stall(ge_, id, stall);
     RunGe();
     return s == GE2GL_OK ? 0 : Reported(s, "list_update_stall");
 }
 
 int32_t GPU_Ge2gl::SceListSync(int32_t id, int32_t mode) {
+    SyncSdkVersion();
     if (mode != GE2GL_SYNC_WAIT && mode != GE2GL_SYNC_PEEK) return int32_t(GE2GL_SCE_ERROR_INVALID_MODE);
     int32_t state = -1;
     const ge2gl_status s = ge2gl_list_sync(ge_, id, GE2GL_SYNC_PEEK, &state);
@@ -390,34 +426,36 @@ int32_t GPU_Ge2gl::SceListSync(int32_t id, int32_t mode) {
     // Waiting is the kernel's business: the same checks PPSSPP's own sceGeListSync makes.
     if (!__KernelIsDispatchEnabled()) return SCE_KERNEL_ERROR_CAN_NOT_WAIT;
     if (__IsInInterrupt()) return SCE_KERNEL_ERROR_ILLEGAL_CONTEXT;
-    if (state == GE2GL_LIST_COMPLETED && !PendingFor(id)) return 0;
+    if (state == GE2GL_LIST_COMPLETED && !PendingLater(id, now)) return 0;
     waitingLists_.insert(slot);
     __GeWaitCurrentThread(GPU_SYNC_LIST, slot, "GeListSync");
     return 0;
 }
 
 int32_t GPU_Ge2gl::SceDrawSync(int32_t mode) {
+    SyncSdkVersion();
     if (mode != GE2GL_SYNC_WAIT && mode != GE2GL_SYNC_PEEK) return int32_t(GE2GL_SCE_ERROR_INVALID_MODE);
     int32_t state = -1;
     const ge2gl_status s = ge2gl_draw_sync(ge_, GE2GL_SYNC_PEEK, &state);
     if (s != GE2GL_OK) return Reported(s, "draw_sync");
     const int64_t now = Now();
     if (mode == GE2GL_SYNC_PEEK) {
-        // Until the CPU reaches the tick of the GE's last stop or completion, the GE draws.
+        // A finish handler already sees its list complete (pspautotests gpu/signals/*: drawsync
+        // reads 0 there). Until the CPU reaches the tick of the GE's last stop or completion, the GE draws.
         int64_t since = 0;
         for (int i = 0; i < kSlots; ++i) since = std::max(since, reachedAt_[i]);
-        if (!pending_.empty()) return GE2GL_LIST_DRAWING;
         return ge2gl_ppsspp::visibleListState(state, since, now);
     }
     if (!__KernelIsDispatchEnabled()) return SCE_KERNEL_ERROR_CAN_NOT_WAIT;
     if (__IsInInterrupt()) return SCE_KERNEL_ERROR_ILLEGAL_CONTEXT;
-    if (state == GE2GL_LIST_COMPLETED && pending_.empty()) return 0;
+    if (state == GE2GL_LIST_COMPLETED && !PendingLater(-1, now)) return 0;
     drawWaiting_ = true;
     __GeWaitCurrentThread(GPU_SYNC_DRAW, 1, "GeDrawSync");
     return 0;
 }
 
 int32_t GPU_Ge2gl::SceBreak(int32_t mode) {
+    SyncSdkVersion();
     int32_t id = -1;
     const ge2gl_status s = ge2gl_break(ge_, mode, &id);
     RunGe();
@@ -426,12 +464,14 @@ int32_t GPU_Ge2gl::SceBreak(int32_t mode) {
 }
 
 int32_t GPU_Ge2gl::SceContinue() {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_continue(ge_);
     RunGe();
     return s == GE2GL_OK ? 0 : Reported(s, "continue");
 }
 
 int32_t GPU_Ge2gl::SceSetCallback(uint32_t structAddr) {
+    SyncSdkVersion();
     if (!Memory::IsValidRange(structAddr, 16)) return int32_t(GE2GL_SCE_ERROR_BAD_POINTER);
     const uint32_t signalFunc = Memory::ReadUnchecked_U32(structAddr);
     const uint32_t signalArg = Memory::ReadUnchecked_U32(structAddr + 4);
@@ -455,6 +495,7 @@ int32_t GPU_Ge2gl::SceSetCallback(uint32_t structAddr) {
 }
 
 int32_t GPU_Ge2gl::SceUnsetCallback(int32_t cbid) {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_unset_callback(ge_, cbid);
     if (s != GE2GL_OK) return Reported(s, "unset_callback");
     sceKernelReleaseSubIntrHandler(PSP_GE_INTR, cbid * 2 + PSP_GE_SUBINTR_FINISH);
@@ -463,23 +504,27 @@ int32_t GPU_Ge2gl::SceUnsetCallback(int32_t cbid) {
 }
 
 int32_t GPU_Ge2gl::SceSaveContext(uint32_t addr) {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_save_context_at(ge_, addr);
     return s == GE2GL_OK ? 0 : Reported(s, "save_context_at");
 }
 
 int32_t GPU_Ge2gl::SceRestoreContext(uint32_t addr) {
+    SyncSdkVersion();
     const ge2gl_status s = ge2gl_restore_context_at(ge_, addr);
     RefreshRegisters();
     return s == GE2GL_OK ? 0 : Reported(s, "restore_context_at");
 }
 
 uint32_t GPU_Ge2gl::SceGetCmd(int32_t op) {
+    SyncSdkVersion();
     uint32_t word = 0;
     const ge2gl_status s = ge2gl_get_cmd(ge_, uint32_t(op), &word);
     return s == GE2GL_OK ? word : uint32_t(Reported(s, "get_cmd"));
 }
 
 int32_t GPU_Ge2gl::SceGetMtx(int32_t type, uint32_t addr) {
+    SyncSdkVersion();
     uint32_t words[16];
     int32_t n = 0;
     const ge2gl_status s = ge2gl_get_matrix(ge_, type, words, &n);
@@ -490,6 +535,7 @@ int32_t GPU_Ge2gl::SceGetMtx(int32_t type, uint32_t addr) {
 }
 
 int32_t GPU_Ge2gl::SceGetStack(int32_t index, uint32_t addr) {
+    SyncSdkVersion();
     uint32_t frame[8];
     int32_t depth = 0;
     const ge2gl_status s = ge2gl_get_stack(ge_, index, frame, &depth);
@@ -500,6 +546,7 @@ int32_t GPU_Ge2gl::SceGetStack(int32_t index, uint32_t addr) {
 }
 
 int32_t GPU_Ge2gl::SceEdramSetAddrTranslation(uint32_t value) {
+    SyncSdkVersion();
     uint32_t previous = 0;
     const ge2gl_status s = ge2gl_edram_set_translation(ge_, value, &previous);
     if (s != GE2GL_OK) return Reported(s, "edram_set_translation");
@@ -664,13 +711,15 @@ void GPU_Ge2gl::DoState(PointerWrap &p) {
 // ge2gl_sync_range (what a GL backend drew is written back first).
 
 void GPU_Ge2gl::InvalidateCache(u32 addr, int size, GPUInvalidationType type) {
-    if (!ge_) return;
-    if (size < 0 || type == GPU_INVALIDATE_ALL) {
-        ge2gl_mem_written(ge_, PSP_GetKernelMemoryBase(), Memory::g_MemorySize);
-        ge2gl_mem_written(ge_, PSP_GetVidMemBase(), 0x00200000);
-        return;
-    }
-    if (size > 0) ge2gl_mem_written(ge_, addr, u32(size));
+    // PPSSPP calls this for the game's data-cache writebacks (HINT for a range, ALL for the whole
+    // cache): the CPU *may* have written there. ge2gl finds such writes itself, by hashing what it
+    // cached when the game next enqueues, continues or moves a stall (docs/plugin-api.md,
+    // "Coherence"); declaring the range written instead would drop pixels a GL backend drew into
+    // a render target that is not written back yet (a list still open, as a GU_DIRECT list is).
+    // SAFE and FORCE come from PPSSPP's own HLE code writing the bytes (font glyphs, replaced
+    // textures): those are writes.
+    if (!ge_ || size <= 0 || type == GPU_INVALIDATE_ALL || type == GPU_INVALIDATE_HINT) return;
+    ge2gl_mem_written(ge_, addr, u32(size));
 }
 
 bool GPU_Ge2gl::PerformMemoryCopy(u32 dest, u32 src, int size, GPUCopyFlag flags) {

@@ -172,8 +172,10 @@ private:
     void RunGe();
     void ResolveWaits();
     bool PendingFor(int32_t id) const;
+    bool PendingLater(int32_t id, int64_t now) const;
     void RefreshRegisters();
     void EnsureIntrHandler();
+    void SyncSdkVersion();
     int32_t Reported(int32_t s, const char *what) const;
 
     ge2gl_context *ge_ = nullptr;
@@ -193,10 +195,12 @@ private:
     int64_t lookaheadCpu_ = 0;    // how far the GE may run ahead of the CPU
 
     uint32_t edramTranslation_ = 0x400;
+    uint32_t sdkVersion_ = 0xFFFFFFFF;  // what ge2gl was last told
     u32 displayFramebuf_ = 0, displayStride_ = 512;
     GEBufferFormat displayFormat_ = GE_FORMAT_8888;
     std::vector<uint8_t> shadow_;  // `gstate` as this core last wrote it
 
+    bool recording_ = false;  // GE2GL_RECORD
     PresentationCommon *presentation_ = nullptr;
     Draw::Texture *frameTexture_ = nullptr;
     std::vector<uint8_t> frameRgba_;
