@@ -360,6 +360,11 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
         h->sce->setTickStop(tick);
         r = drive(h, c, max_commands);
         h->sce->setTickStop(~u64(0));
+        // The software model rasterises on band threads behind the GE. When the GE stops where the
+        // host may write guest memory itself (a stall, idle, a pause, a held interrupt), those
+        // draws finish first: a host write in place must land after the draws issued before it.
+        if (h->backend == GE2GL_BACKEND_SOFT && (r.state != ge::SceRunState::Budget || h->held))
+            h->engine->renderer()->flushToMemory();
         if (r.state == ge::SceRunState::Reentrant)
             return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
     }

@@ -495,6 +495,33 @@ TEST(ApiThreads, ACallbackMayWaitForTheCpuThreadWhileItCallsIn) {
     }
 }
 
+// A host that writes its VRAM in place while a list is stalled (PPSSPP's dump player writes a
+// frame image after a clear, then reports it) must see its bytes survive: draws the software
+// model queued before the stall land in memory before ge2gl_run returns, not after the write.
+TEST(ApiThreads, HostWritesAtAStallLandAfterTheDrawsBeforeIt) {
+    EmbedHost host(GE2GL_BACKEND_SOFT);
+    ASSERT_EQ(host.status, GE2GL_OK);
+    uint32_t words = 0;
+    const uint32_t l = host.list([&](ge::ListBuilder& b) {
+        EmbedHost::clearTo(b, RED);
+        words = uint32_t(b.words().size());  // the stall: right after the clear
+        EmbedHost::rect(b, 0, 0, 4, 4, GREEN);
+    });
+    int32_t id = -1;
+    ASSERT_EQ(ge2gl_list_enqueue(host.h, l, l + 4 * words, -1, nullptr, &id), GE2GL_OK);
+    ge2gl_run_info info{};
+    ASSERT_EQ(ge2gl_run(host.h, 1u << 20, &info), GE2GL_OK);
+    EXPECT_EQ(info.ge_state, GE2GL_GE_STALLED);
+    EXPECT_EQ(rgb(host.hostPixel(100, 100)), rgb(RED));  // the clear is in memory already
+    host.pokePixel(100, 100, BLUE);                       // the host's own write, in place
+    ASSERT_EQ(ge2gl_mem_written(host.h, kVram + (100 * 512 + 100) * 4, 4), GE2GL_OK);
+    ASSERT_EQ(ge2gl_list_update_stall(host.h, id, 0), GE2GL_OK);
+    int32_t s = -1;
+    ASSERT_EQ(ge2gl_draw_sync(host.h, GE2GL_SYNC_WAIT, &s), GE2GL_OK);
+    EXPECT_EQ(rgb(host.hostPixel(100, 100)), rgb(BLUE));
+    EXPECT_EQ(rgb(host.hostPixel(2, 2)), rgb(GREEN));
+}
+
 // An interrupt held until the host acknowledges it: the GE does not go past a signal or a finish
 // before the host has run the guest handler.
 TEST(ApiThreads, HeldInterruptsWaitForTheAcknowledgement) {

@@ -72,7 +72,12 @@ template <class LinkT>
 class Ge2glIntrHandler : public IntrHandler {
 public:
     explicit Ge2glIntrHandler(std::shared_ptr<LinkT> link) : IntrHandler(PSP_GE_INTR), link_(std::move(link)) {}
-    ~Ge2glIntrHandler() override { link_->handlerRegistered = false; }
+    // PPSSPP deletes interrupt handlers when its kernel shuts down (HLEShutdown, before it frees
+    // guest memory; also when LoadExec restarts the kernel) or registers its own again.
+    ~Ge2glIntrHandler() override {
+        link_->handlerRegistered = false;
+        if (link_->core) link_->core->KernelStopping();
+    }
     bool run(PendingInterrupt &) override { return link_->core ? link_->core->StartInterrupt(*this) : false; }
     void handleResult(PendingInterrupt &) override {
         if (link_->core) link_->core->FinishInterrupt();
@@ -170,11 +175,24 @@ GPU_Ge2gl::GPU_Ge2gl(GraphicsContext *gfxCtx, Draw::DrawContext *draw)
     }
 }
 
-GPU_Ge2gl::~GPU_Ge2gl() {
+void GPU_Ge2gl::KernelStopping() {
+    // PPSSPP frees guest memory before it destroys the GPU core (PSP_Shutdown: CPU_Shutdown, then
+    // GPU_Shutdown): everything that still writes guest memory ends here, while it exists - the
+    // software model's rasterising threads finish their queued draws, a GL backend writes its
+    // targets back, a recording is written.
+    if (!ge_ || kernelStopped_) return;
+    kernelStopped_ = true;
     if (recording_) {
+        recording_ = false;
         if (displayFramebuf_) ge2gl_record_display(ge_, displayFramebuf_, displayStride_, int32_t(displayFormat_));
         if (ge2gl_record_end(ge_) != GE2GL_OK) ERROR_LOG(Log::G3D, "ge2gl: GE2GL_RECORD: %s", ge2gl_last_message(ge_));
     }
+    ge2gl_sync_range(ge_, PSP_GetVidMemBase(), 0x00200000);
+    ge2gl_sync_range(ge_, PSP_GetKernelMemoryBase(), Memory::g_MemorySize);
+}
+
+GPU_Ge2gl::~GPU_Ge2gl() {
+    KernelStopping();
     link_->core = nullptr;
     if (g_active == this) g_active = nullptr;
     if (frameTexture_) frameTexture_->Release();
@@ -185,6 +203,7 @@ GPU_Ge2gl::~GPU_Ge2gl() {
 void GPU_Ge2gl::EnsureIntrHandler() {
     if (link_->handlerRegistered) return;
     link_->handlerRegistered = true;
+    kernelStopped_ = false;
     __RegisterIntrHandler(PSP_GE_INTR, new Ge2glIntrHandler<Link>(link_));
 }
 
@@ -367,6 +386,27 @@ void GPU_Ge2gl::ReapplyGfxState() {
     gstate.Save(ctx);
     uint32_t words[512];
     for (int i = 0; i < 512; ++i) words[i] = ctx[i];
+    // gstate.Save takes the matrices from the GPU core (GetMatrix24: ge2gl's, not the ones PPSSPP
+    // just restored into gstate): the matrix part of the context (words 226-384, the layout
+    // sceGeSaveContext writes: each matrix's number command, its data commands, then the five
+    // upload indices and END) is written here from gstate's own matrices.
+    struct Mtx { const float *m; int n; u32 numOp, dataOp; };
+    const Mtx mats[5] = {{gstate.boneMatrix, 96, GE_CMD_BONEMATRIXNUMBER, GE_CMD_BONEMATRIXDATA},
+                         {gstate.worldMatrix, 12, GE_CMD_WORLDMATRIXNUMBER, GE_CMD_WORLDMATRIXDATA},
+                         {gstate.viewMatrix, 12, GE_CMD_VIEWMATRIXNUMBER, GE_CMD_VIEWMATRIXDATA},
+                         {gstate.projMatrix, 16, GE_CMD_PROJMATRIXNUMBER, GE_CMD_PROJMATRIXDATA},
+                         {gstate.tgenMatrix, 12, GE_CMD_TGENMATRIXNUMBER, GE_CMD_TGENMATRIXDATA}};
+    int w = 226;
+    for (const Mtx &m : mats) {
+        words[w++] = m.numOp << 24;
+        for (int k = 0; k < m.n; ++k) words[w++] = (m.dataOp << 24) | toFloat24(m.m[k]);
+    }
+    words[w++] = gstate.boneMatrixNumber & 0xFF00007F;
+    words[w++] = gstate.worldmtxnum & 0xFF00000F;
+    words[w++] = gstate.viewmtxnum & 0xFF00000F;
+    words[w++] = gstate.projmtxnum & 0xFF00000F;
+    words[w++] = gstate.texmtxnum & 0xFF00000F;
+    words[w] = GE_CMD_END << 24;
     const ge2gl_status s = ge2gl_restore_context(ge_, words);
     if (s != GE2GL_OK)
         WARN_LOG(Log::G3D, "ge2gl: PPSSPP's register state could not be applied: %s (%s)", ge2gl_status_name(s), ge2gl_last_message(ge_));

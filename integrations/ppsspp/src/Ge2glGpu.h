@@ -104,6 +104,8 @@ public:
     bool StartInterrupt(IntrHandler &handler);
     // The guest's handler returned (or there was none): the GE may go on.
     void FinishInterrupt();
+    // The kernel shuts down (or restarts): nothing may write guest memory after this.
+    void KernelStopping();
     // CoreTiming events.
     void OnSliceEvent();
     void OnInterruptEvent();
@@ -201,6 +203,7 @@ private:
     std::vector<uint8_t> shadow_;  // `gstate` as this core last wrote it
 
     bool recording_ = false;  // GE2GL_RECORD
+    bool kernelStopped_ = false;  // KernelStopping ran since the handler was registered
     PresentationCommon *presentation_ = nullptr;
     Draw::Texture *frameTexture_ = nullptr;
     std::vector<uint8_t> frameRgba_;
