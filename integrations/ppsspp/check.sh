@@ -13,8 +13,11 @@
 # by PPSSPP's own dump player on ge2gl's core and compared with `ge2gl render` of the same dump
 # (soft: must be identical), and played with GL hardware mode at 2x (must run).
 #
+# Then the sceGe tests once more on ge2gl's soft core with PPSSPP's whole state saved and loaded
+# back at every GE interrupt: each must end as without.
 # OUT_DIR is build.sh's. Environment: CORES (default "software ge2gl ge2gl-gl": --graphics= values),
-# TIMEOUT (seconds per test, default 60), ONLY (a grep -E pattern on test names).
+# TIMEOUT (seconds per test, default 60), ONLY (a grep -E pattern on test names), STATE_ROUNDTRIP
+# (0 skips the save-state pass).
 # Exit status: 1 when a sceGe test PPSSPP's core passes fails on ge2gl (soft), when ge2gl passes
 # fewer tests than PPSSPP's core on any core, or when a frametest check fails; else 0.
 set -euo pipefail
@@ -102,6 +105,36 @@ if "software" in cores:
             print(f"\n{names.get(c, c)} passes fewer tests than PPSSPP's software core")
 sys.exit(1 if bad else 0)
 EOF
+
+# Save states: the sceGe tests again on ge2gl's soft core with PPSSPP's whole state saved and
+# loaded back at every GE interrupt (GE2GL_STATE_ROUNDTRIP; PPSSPP's interpreter, as a state
+# loaded from inside a CoreTiming event cannot return into JIT code): each must pass as without.
+if [ "${STATE_ROUNDTRIP:-1}" = 1 ]; then
+  mkdir -p "$work/roundtrip"
+  rt_pass=0 rt_same=0 rt_total=0 rt_trips=0 rt_failed=0
+  for t in "${tests[@]}"; do
+    case "$t" in tests/gpu/ge/*|tests/gpu/signals/*|tests/gpu/displaylist/*|tests/gpu/callbacks/*) ;; *) continue ;; esac
+    log="$work/roundtrip/$(echo "$t" | tr / _).log"
+    set +e
+    GE2GL_STATE_ROUNDTRIP=1 timeout $((timeout_s + 30)) "$headless" --root "$autotests" --compare --timeout="$timeout_s" \
+      --graphics=ge2gl --cpu=interpreter "$autotests/$t.prx" >"$log" 2>&1
+    set -e
+    rt_total=$((rt_total + 1))
+    p=0
+    grep -q " - passed!" "$log" && p=1 && rt_pass=$((rt_pass + 1))
+    base=$(awk -F'\t' -v t="$t" '$1 == "ge2gl" && $2 == t {print $3}' "$results")
+    [ "$p" = "${base:-x}" ] && rt_same=$((rt_same + 1))
+    n=$(sed -n 's/^ge2gl: \([0-9]*\) save-state round trips, \([0-9]*\) failed$/\1 \2/p' "$log")
+    rt_trips=$((rt_trips + ${n%% *}))
+    rt_failed=$((rt_failed + ${n##* }))
+  done
+  echo
+  echo "### save states"
+  echo
+  echo "sceGe tests with a save-state round trip at every GE interrupt: $rt_pass of $rt_total pass," \
+       "$rt_same of $rt_total as without; $rt_trips round trips, $rt_failed failed"
+  { [ "$rt_same" = "$rt_total" ] && [ "$rt_failed" = 0 ]; } || status=1
+fi
 
 if [ -n "$frametests" ]; then
   cli="$out/ge2gl-build/ge2gl"

@@ -28,6 +28,7 @@
 #include "Core/HLE/sceKernelThread.h"
 #include "Core/MIPS/MIPS.h"
 #include "Core/MemMap.h"
+#include "Core/SaveState.h"
 #include "Core/System.h"
 #include "GPU/Common/GPUDebugInterface.h"
 #include "GPU/Common/PresentationCommon.h"
@@ -159,6 +160,7 @@ GPU_Ge2gl::GPU_Ge2gl(GraphicsContext *gfxCtx, Draw::DrawContext *draw)
     EnsureIntrHandler();
     SyncSdkVersion();
     RefreshRegisters();
+    if (const char *v = getenv("GE2GL_STATE_ROUNDTRIP"); v && *v == '1') stateRoundTrip_ = true;
     // GE2GL_RECORD=FILE: everything this core's GE executes, written as a .ppdmp frame dump when
     // the emulation stops (ge2gl_record_*), for `ge2gl render`/`compare`/`bisect` on the same GE
     // work outside PPSSPP.
@@ -192,6 +194,7 @@ void GPU_Ge2gl::KernelStopping() {
 }
 
 GPU_Ge2gl::~GPU_Ge2gl() {
+    if (stateRoundTrip_) fprintf(stderr, "ge2gl: %d save-state round trips, %d failed\n", roundTrips_, roundTripFailures_);
     KernelStopping();
     link_->core = nullptr;
     if (g_active == this) g_active = nullptr;
@@ -296,6 +299,18 @@ void GPU_Ge2gl::QueueInterrupt(const ge2gl_interrupt &irq, bool finish) {
 }
 
 void GPU_Ge2gl::OnInterruptEvent() {
+    // GE2GL_STATE_ROUNDTRIP=1 (a test knob, docs in README.md): at every GE interrupt - mid-list,
+    // with the GE holding the interrupt and events pending - PPSSPP's whole state, this core's
+    // included, is saved to memory and loaded back before the emulation goes on; the output of a
+    // run must not change.
+    if (stateRoundTrip_) {
+        std::vector<u8> state;
+        std::string why;
+        const bool ok = SaveState::SaveToRam(state) == CChunkFileReader::ERROR_NONE &&
+                        SaveState::LoadFromRam(state, &why) == CChunkFileReader::ERROR_NONE;
+        ++(ok ? roundTrips_ : roundTripFailures_);
+        if (!ok) ERROR_LOG(Log::G3D, "ge2gl: save state round trip failed: %s", why.c_str());
+    }
     // As PPSSPP's own GE does: the interrupt is raised at its tick and runs when the CPU can take
     // it (interrupts enabled, not already in one).
     __TriggerInterrupt(PSP_INTR_IMMEDIATE, PSP_GE_INTR, PSP_INTR_SUB_NONE);

@@ -203,6 +203,8 @@ private:
     std::vector<uint8_t> shadow_;  // `gstate` as this core last wrote it
 
     bool recording_ = false;  // GE2GL_RECORD
+    bool stateRoundTrip_ = false;  // GE2GL_STATE_ROUNDTRIP
+    int roundTrips_ = 0, roundTripFailures_ = 0;
     bool kernelStopped_ = false;  // KernelStopping ran since the handler was registered
     PresentationCommon *presentation_ = nullptr;
     Draw::Texture *frameTexture_ = nullptr;
