@@ -14,7 +14,9 @@
 set -euo pipefail
 [ $# -eq 1 ] || { sed -n '4,13p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 dest=$1
-pattern=${GE2GL_GIT_SOURCE:-https://github.com/{owner}/{name}.git}
+# (The default sits in a variable: a '}' inside ${VAR:-...} would end the expansion early.)
+default_pattern='https://github.com/{owner}/{name}.git'
+pattern=${GE2GL_GIT_SOURCE:-$default_pattern}
 ppsspp_commit=c09e6bddaace3a9f6dfeb48f52a9eef9ae221751
 
 url() { local s=${pattern//\{owner\}/$1}; echo "${s//\{name\}/$2}"; }
@@ -23,11 +25,13 @@ url() { local s=${pattern//\{owner\}/$1}; echo "${s//\{name\}/$2}"; }
 clone() {
   local repo=$1 dir=$2 commit=$3 alt_repo=${4:-} alt_commit=${5:-}
   rm -rf "$dir"
-  git clone -q --no-checkout "$(url "${repo%/*}" "${repo#*/}")" "$dir"
-  if git -C "$dir" cat-file -e "$commit^{commit}" 2>/dev/null; then
+  # A repository that cannot be had at all (no mirror of a fork) counts as one without the commit.
+  git clone -q --no-checkout "$(url "${repo%/*}" "${repo#*/}")" "$dir" 2>/dev/null || [ -n "$alt_commit" ] || {
+    echo "checkout.sh: cannot clone $repo" >&2; exit 1; }
+  if [ -d "$dir/.git" ] && git -C "$dir" cat-file -e "$commit^{commit}" 2>/dev/null; then
     git -C "$dir" checkout -q "$commit"
   elif [ -n "$alt_commit" ]; then
-    if [ "$alt_repo" != "$repo" ]; then
+    if [ "$alt_repo" != "$repo" ] || [ ! -d "$dir/.git" ]; then
       rm -rf "$dir"
       git clone -q --no-checkout "$(url "${alt_repo%/*}" "${alt_repo#*/}")" "$dir"
     fi
