@@ -480,19 +480,45 @@ void FramebufferManager::bindDraw(Target* color, Target* depth) {
     }
 }
 
-void FramebufferManager::writeBack(Target& t) {
+void FramebufferManager::writeBack(Target& t, u32 lo, u32 hi) {
     Rect r = t.dirty;
-    t.dirty = Rect{};
-    t.announced = Rect{};
     r.x0 = std::max(r.x0, 0), r.y0 = std::max(r.y0, 0);
     r.x1 = std::min(r.x1, int(t.width()) - 1), r.y1 = std::min(r.y1, t.rowsValid - 1);
+    const u32 bpp = t.bpp();
+    auto rowStart = [&](int y) { return t.addr + (u32(y) * t.stride + u32(r.x0)) * bpp; };
+    auto rowEnd = [&](int y) { return t.addr + (u32(y) * t.stride + u32(r.x1) + 1) * bpp; };
+    if (!r.empty() && (lo > rowStart(r.y0) || hi < rowEnd(r.y1))) {
+        // Only [lo, hi) is asked for (ge2gl_sync_range): the bytes outside it may hold CPU writes
+        // the host did not report, which a write-back must not overwrite. Rows wholly inside the
+        // range at the top or bottom of the dirty area leave it; the rest stays dirty.
+        int y0 = r.y0, y1 = r.y1;
+        while (y0 <= y1 && rowEnd(y0) <= lo) ++y0;
+        while (y1 >= y0 && rowStart(y1) >= hi) --y1;
+        if (y0 > y1) return;
+        r.y0 = y0, r.y1 = y1;
+        int top = t.dirty.y0, bottom = t.dirty.y1;
+        while (top <= y1 && top >= y0 && rowStart(top) >= lo && rowEnd(top) <= hi) ++top;
+        while (bottom >= top && bottom <= y1 && bottom >= y0 && rowStart(bottom) >= lo && rowEnd(bottom) <= hi) --bottom;
+        t.dirty.y0 = top, t.dirty.y1 = bottom;
+        if (t.dirty.empty()) t.dirty = Rect{}, t.announced = Rect{};
+    } else {
+        t.dirty = Rect{};
+        t.announced = Rect{};
+        lo = 0, hi = ~0u;
+    }
     if (r.empty()) return;
     const GlFuncs& gl = ctx_.f();
     const int w = r.x1 - r.x0 + 1, h = r.y1 - r.y0 + 1;
+    // The pixels of row y (from r.x0) that lie in [lo, hi): [first, first + count).
+    auto span = [&](int y, u32 pixelBytes, u32& first, u32& count) {
+        const u32 start = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0)) * pixelBytes;
+        const u32 a = std::max(start, lo), b = std::min(start + u32(w) * pixelBytes, hi);
+        first = a > start ? (a - start + pixelBytes - 1) / pixelBytes : 0;
+        count = b > start + first * pixelBytes ? (b - start) / pixelBytes - first : 0;
+    };
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo_);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 4);
     gl.PixelStorei(GL_PACK_ROW_LENGTH, 0);
-    const u32 bpp = t.bpp();
     const bool scaled = scale_ > 1;
     if (scaled) {
         if (!downColorProg_ && !buildDownsamplePrograms()) return;
@@ -507,11 +533,13 @@ void FramebufferManager::writeBack(Target& t) {
         gl.ReadPixels(r.x0, r.y0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pixels_.data());
         gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
         for (int y = 0; y < h; ++y) {
-            const u32 rowAddr = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0)) * bpp;
-            const u32 avail = mem_.validSize(rowAddr, u32(w) * bpp) / bpp;
+            u32 first, count;
+            span(y, bpp, first, count);
+            const u32 rowAddr = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0) + first) * bpp;
+            const u32 avail = mem_.validSize(rowAddr, count * bpp) / bpp;
             u8* dst = mem_.ptr(rowAddr, std::max<u32>(avail * bpp, 1));
             if (!dst || avail == 0) continue;
-            const u32* src = &pixels_[size_t(y) * size_t(w)];
+            const u32* src = &pixels_[size_t(y) * size_t(w) + first];
             if (t.fmt == GE_FORMAT_8888) {
                 for (u32 x = 0; x < avail; ++x) writeLE32(dst + 4 * x, src[x]);
             } else {
@@ -531,11 +559,13 @@ void FramebufferManager::writeBack(Target& t) {
             gl.FramebufferTexture2D(GL_READ_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
         }
         for (int y = 0; y < h; ++y) {
-            const u32 rowAddr = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0)) * 2;
-            const u32 avail = mem_.validSize(rowAddr, u32(w) * 2) / 2;
+            u32 first, count;
+            span(y, 2, first, count);
+            const u32 rowAddr = t.addr + (u32(r.y0 + y) * t.stride + u32(r.x0) + first) * 2;
+            const u32 avail = mem_.validSize(rowAddr, count * 2) / 2;
             u8* dst = mem_.ptr(rowAddr, std::max<u32>(avail * 2, 1));
             if (!dst || avail == 0) continue;
-            const float* src = &depthPixels_[size_t(y) * size_t(w)];
+            const float* src = &depthPixels_[size_t(y) * size_t(w) + first];
             for (u32 x = 0; x < avail; ++x) {
                 const float z = std::clamp(src[x] * 65536.0f + 0.5f, 0.0f, 65535.0f);
                 writeLE16(dst + 2 * x, u16(z));
@@ -550,7 +580,7 @@ void FramebufferManager::syncRange(u32 addr, u32 size) {
     const u32 begin = vramLinear(addr);
     const u32 end = size ? begin + size : ~0u;
     for (auto& t : targets_)
-        if (!t->dirty.empty() && t->addr < end && t->end() > begin) writeBack(*t);
+        if (!t->dirty.empty() && t->addr < end && t->end() > begin) writeBack(*t, begin, end);
 }
 
 bool FramebufferManager::dirtyOverlaps(u32 addr, u32 size) const {

@@ -87,7 +87,9 @@ public:
     void bindDraw(Target* color, Target* depth);
     GLuint drawFbo() const { return drawFbo_; }
 
-    void writeBack(Target& t);
+    // Writes the dirty pixels of t that lie in [lo, hi) (linear VRAM addresses) back to guest
+    // memory; what is left of the dirty area stays dirty.
+    void writeBack(Target& t, u32 lo = 0, u32 hi = ~0u);
     // Writes back dirty targets overlapping [addr, addr+size) (size 0: from addr to VRAM end).
     void syncRange(u32 addr, u32 size);
     // Guest memory changed under the targets: re-upload the overlapping spans.

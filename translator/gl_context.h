@@ -51,6 +51,8 @@ public:
     bool entered() const { return depth_ > 0; }
     const GlFuncs& f() const { return funcs_; }
     const GlCaps& caps() const { return caps_; }
+    // Current contexts the host destroyed or replaced: GL calls through f() do nothing from now on.
+    void disarm() { funcs_.disarm(); }
 
 private:
     GlContext() = default;

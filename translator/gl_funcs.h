@@ -97,7 +97,10 @@ namespace ge::gl {
     X(PFNGLENDTRANSFORMFEEDBACKPROC, EndTransformFeedback)                            \
     X(PFNGLBINDBUFFERBASEPROC, BindBufferBase)                                        \
     X(PFNGLGETBUFFERSUBDATAPROC, GetBufferSubData)                                    \
-    X(PFNGLDRAWELEMENTSPROC, DrawElements)
+    X(PFNGLDRAWELEMENTSPROC, DrawElements)                                            \
+    X(PFNGLISBUFFERPROC, IsBuffer)                                                    \
+    X(PFNGLOBJECTLABELPROC, ObjectLabel)                                              \
+    X(PFNGLGETOBJECTLABELPROC, GetObjectLabel)
 
 struct GlFuncs {
 #define GE2GL_DECLARE(type, name) type name = nullptr;
@@ -117,6 +120,22 @@ struct GlFuncs {
 #undef GE2GL_LOAD_OPT
         return nullptr;
     }
+    // Every entry point becomes a call that does nothing and returns zero: for a host context that
+    // is gone (GL_CURRENT), so that releasing our objects cannot touch whatever context is current.
+    void disarm() {
+#define GE2GL_DISARM(type, name) name = &Nop<type>::call;
+        GE2GL_GL_FUNCS(GE2GL_DISARM)
+        GE2GL_GL_OPTIONAL_FUNCS(GE2GL_DISARM)
+#undef GE2GL_DISARM
+    }
+
+private:
+    template <typename F>
+    struct Nop;
+    template <typename R, typename... A>
+    struct Nop<R(APIENTRYP)(A...)> {
+        static R APIENTRY call(A...) { return R(); }
+    };
 };
 
 }  // namespace ge::gl

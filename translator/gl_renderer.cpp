@@ -94,6 +94,14 @@ public:
         gl_.GenBuffers(1, &vbo_);
         gl_.BindVertexArray(vao_);
         gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+        if (!ctx_->headless() && gl_.ObjectLabel) {
+            // GL_CURRENT: the vertex buffer doubles as the probe that tells our context (or one
+            // sharing its objects) from another one current at a later call (currentIsOurs).
+            char label[48];
+            std::snprintf(label, sizeof label, "ge2gl renderer %p", static_cast<void*>(this));
+            probeLabel_ = label;
+            gl_.ObjectLabel(GL_BUFFER, vbo_, -1, probeLabel_.c_str());
+        }
         const GLsizei stride = sizeof(GlVertex);
         gl_.EnableVertexAttribArray(shadergen::kAttrPos);
         gl_.VertexAttribPointer(shadergen::kAttrPos, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsetof(GlVertex, x)));
@@ -141,6 +149,9 @@ public:
 
     ~GlRenderer() override {
         std::string err;
+        // A host context that is gone or not current: its objects go with it; deleting names in
+        // whatever context is current would delete the host's objects.
+        if (!ctx_->headless() && !currentIsOurs(err)) ctx_->disarm();
         ctx_->enter(err);  // headless: ours current for the deletes, the thread's previous after
         presenter_.reset();
         textures_.clear();
@@ -166,11 +177,36 @@ public:
                 return false;
             }
         } else {
+            if (!currentIsOurs(err)) {
+                --hostDepth_;
+                return false;
+            }
             hostState_.save(gl_);
         }
         establishTranslatorState(gl_);
         forgetGlState();
         return true;
+    }
+    // GL_CURRENT: is the context current on this thread the one this renderer was created on
+    // (or one sharing its objects)? A GL call with none current does nothing and returns 0 (GL
+    // 4.6 core profile §2.1.1, "no current context"); another context does not know our buffer,
+    // or gives it another label (KHR_debug; without it only the name is checked).
+    bool currentIsOurs(std::string& err) const {
+        if (!gl_.GetString(GL_VERSION)) {
+            err = "no GL context is current on this thread (GL_CURRENT needs the context it was created with)";
+            return false;
+        }
+        bool ours = gl_.IsBuffer(vbo_) == GL_TRUE;
+        if (ours && !probeLabel_.empty() && gl_.GetObjectLabel) {
+            char label[48] = {};
+            GLsizei n = 0;
+            gl_.GetObjectLabel(GL_BUFFER, vbo_, GLsizei(sizeof label), &n, label);
+            ours = probeLabel_ == std::string(label, size_t(std::max(n, 0)));
+        }
+        if (!ours)
+            err = "the GL context current on this thread is not the one this GL_CURRENT instance was created with "
+                  "(nor one sharing its objects)";
+        return ours;
     }
     void hostLeave() {
         if (hostDepth_ == 0 || --hostDepth_ > 0) return;
@@ -890,6 +926,7 @@ private:
     u64 seenClobbers_ = 0;
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
+    std::string probeLabel_;  // GL_CURRENT with KHR_debug: vbo_'s label (currentIsOurs)
     GLuint snapColor_ = 0, snapDepth_ = 0, snapFbo_ = 0;
     std::unique_ptr<Presenter> presenter_;
     int hostDepth_ = 1;

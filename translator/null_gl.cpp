@@ -38,6 +38,7 @@ GLint APIENTRY uniformLocation(GLuint, const GLchar*) { return 0; }  // uniform 
 GLenum APIENTRY framebufferStatus(GLenum) { return GL_FRAMEBUFFER_COMPLETE; }
 const GLubyte* APIENTRY getString(GLenum) { return reinterpret_cast<const GLubyte*>("null GL"); }
 void APIENTRY getIntegerv(GLenum, GLint* v) { *v = 0; }
+GLboolean APIENTRY isObject(GLuint name) { return name ? GL_TRUE : GL_FALSE; }
 
 }  // namespace
 
@@ -54,6 +55,11 @@ void loadNullGl(GlFuncs& f) {
     f.CheckFramebufferStatus = &framebufferStatus;
     f.GetString = &getString;
     f.GetIntegerv = &getIntegerv;
+    // GL_CURRENT's context check (GlRenderer::currentIsOurs): the names ge2gl made exist; no
+    // object labels are kept, so the check rests on IsBuffer alone.
+    f.IsBuffer = &isObject;
+    f.ObjectLabel = nullptr;
+    f.GetObjectLabel = nullptr;
 }
 
 }  // namespace ge::gl
