@@ -22,7 +22,15 @@ ge2gl_status frameArgs(Call& c, ge2gl_context* h, uint32_t addr, uint32_t stride
     if (format < GE2GL_FORMAT_565 || format > GE2GL_FORMAT_8888) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "unknown pixel format");
     if (!width || !height || width > 4096 || height > 4096 || stride < width || stride > 4096)
         return c.error(GE2GL_ERR_INVALID_ARGUMENT, "width/height must be 1-4096 and stride at least width (at most 4096)");
-    *bytes = ((height - 1) * stride + width) * ge::bytesPerPixel(ge::GeBufferFormat(format));
+    // The GE addresses frame buffers in whole pixels (manual §11.5, FBP: 16-byte aligned): an
+    // address inside a pixel names no frame.
+    const u32 bpp = ge::bytesPerPixel(ge::GeBufferFormat(format));
+    if (addr % bpp) {
+        char buf[100];
+        std::snprintf(buf, sizeof buf, "frame address 0x%08x is not aligned to its %u-byte pixels", addr, bpp);
+        return c.error(GE2GL_ERR_INVALID_ARGUMENT, buf);
+    }
+    *bytes = ((height - 1) * stride + width) * bpp;
     if (!h->mem->valid(addr, *bytes)) {
         char buf[100];
         std::snprintf(buf, sizeof buf, "frame buffer 0x%08x + 0x%x is outside guest memory", addr, *bytes);

@@ -131,6 +131,7 @@ RunStatus GeEngine::run(u64 maxCommands) {
     }
     stopRequested_ = false;
     broke_ = false;
+    drawCut_ = false;
     u64 n = 0;
     for (;;) {
         if (list_.stall && list_.pc == list_.stall) {
@@ -328,6 +329,7 @@ void GeEngine::doPrim(u32 arg) {
     ++stats_.prims;
     stats_.vertices += count;
     if (!chargeDraw(getime::perVertexCost(state_) * count)) return;
+    checkDrawData("PRIM", pkt.vtype, pkt.vertexAddr, pkt.indexAddr, count);
     renderer_->drawPrim(pkt);
     chargePixels();
     latchVertexAttributes(pkt);
@@ -394,6 +396,25 @@ void GeEngine::doPatch(u32 word) {
     };
     const u64 generated = std::min<u64>(side(pkt.ucount, pkt.divU) * side(pkt.vcount, pkt.divV), u64(1) << 21);
     if (!chargeDraw(getime::perVertexCost(state_) * generated)) return;
+    const char* what = pkt.spline ? "SPLINE" : "BEZIER";
+    if (pkt.ucount >= 4 && pkt.vcount >= 4) {
+        // The tessellator's output cap (geometry/spline.cpp, 2^21 vertices): a larger surface is
+        // not drawn at all. Its size as the tessellator counts it.
+        const u64 patchesU = pkt.spline ? pkt.ucount - 3 : (pkt.ucount - 1) / 3;
+        const u64 patchesV = pkt.spline ? pkt.vcount - 3 : (pkt.vcount - 1) / 3;
+        const u64 total = pkt.spline ? (patchesU * pkt.divU + 1) * (patchesV * pkt.divV + 1)
+                                     : patchesU * patchesV * (pkt.divU + 1) * (pkt.divV + 1);
+        if (total > (u64(1) << 21)) {
+            char buf[200];
+            std::snprintf(buf, sizeof buf,
+                          "%s of %ux%u control points at %ux%u divisions makes %llu vertices, past the tessellator's "
+                          "cap of 2097152: not drawn",
+                          what, pkt.ucount, pkt.vcount, pkt.divU, pkt.divV, static_cast<unsigned long long>(total));
+            reportDrop(buf);
+        } else {
+            checkDrawData(what, pkt.vtype, pkt.vertexAddr, pkt.indexAddr, count);
+        }
+    }
     renderer_->drawPatch(pkt);
     chargePixels();
     if (state_.indexSize()) state_.indexAddr = (state_.indexAddr + count * state_.indexSize()) & 0x0FFFFFFF;
@@ -437,23 +458,69 @@ bool bboxPosition(const Memory& mem, const GeState& st, u32 addr, float out[3]) 
 // outside the same edge of the drawing area (REGION ∩ SCISSOR widened by one pixel, placed in screen
 // space with OFFSETX/Y) or behind the near plane. An area touching the 4096 screen edge always passes.
 bool GeEngine::chargeDraw(u64 vertexCycles) {
-    if (cycleLimit_ == ~u64(0)) {
+    // The draw's end: the run's time limit, or sooner the host's bound on one draw.
+    drawEnd_ = ~u64(0);
+    if (drawLimit_ != ~u64(0)) drawEnd_ = stats_.cycles + std::min(drawLimit_, ~u64(0) - stats_.cycles - 1);
+    const u64 limit = std::min(cycleLimit_, drawEnd_);
+    if (limit == ~u64(0)) {
         charge(vertexCycles, &GeStats::cyclesVertices);
         if (pixelBudgetSet_) renderer_->setPixelBudget(~u64(0)), pixelBudgetSet_ = false;
         return true;
     }
-    if (stats_.cycles + vertexCycles > cycleLimit_) {
+    if (stats_.cycles + vertexCycles > limit) {
         // The draw alone would overrun the limit (a patch near the tessellation cap, a huge
         // primitive count): it is not drawn.
-        stats_.cycles = cycleLimit_;
+        stats_.cycles = limit;
         stopRequested_ = true;
         stopStatus_ = RunStatus::TimeLimit;
+        drawCut_ = limit == drawEnd_;
+        if (drawCut_) reportDrop("a draw whose vertex work alone takes more than the host's GE-time budget: not drawn", true);
         return false;
     }
     charge(vertexCycles, &GeStats::cyclesVertices);
-    renderer_->setPixelBudget((cycleLimit_ - stats_.cycles) * 3);  // pixelCost: 1/3 cycle a pixel
+    renderer_->setPixelBudget((limit - stats_.cycles) * 3);  // pixelCost: 1/3 cycle a pixel
     pixelBudgetSet_ = true;
     return true;
+}
+
+void GeEngine::reportDrop(const std::string& message, bool cut) {
+    ++(cut ? stats_.drawsCut : stats_.drawsDropped);
+    if (listener_) listener_->onDrop(list_.pc, message);
+}
+
+// The renderers draw without what they cannot read (docs/ge-rules.md §3.4); the host hears of it.
+// Cheap for the usual draw: an indexed draw reads its indices only when the largest vertex its
+// index size can name would lie outside memory.
+void GeEngine::checkDrawData(const char* what, u32 vtype, u32 vertexAddr, u32 indexAddr, u32 count) {
+    const VertexReader r(mem_, state_, vtype);
+    const u32 stride = state_.vertexStride();
+    const u32 isize = r.indexSize();
+    char buf[200];
+    if (isize) {
+        if (!mem_.valid(indexAddr, count * isize)) {
+            std::snprintf(buf, sizeof buf, "%s: its %u indices at 0x%08x lie outside guest memory: not drawn", what,
+                          count, indexAddr);
+            reportDrop(buf);
+            return;
+        }
+        u64 maxIndex = isize == 1 ? 0xFF : isize == 2 ? 0xFFFF : 0xFFFFFFFF;
+        if (mem_.valid(vertexAddr, u32(std::min<u64>((maxIndex + 1) * stride, 0xFFFFFFFF)))) return;
+        std::vector<u32>& idx = latchIndices_;
+        if (!r.readIndices(indexAddr, count, idx) || idx.empty()) return;
+        maxIndex = *std::max_element(idx.begin(), idx.end());
+        if (mem_.valid(vertexAddr, u32(std::min<u64>((maxIndex + 1) * stride, 0xFFFFFFFF)))) return;
+        std::snprintf(buf, sizeof buf,
+                      "%s: vertex %llu of the data at 0x%08x (stride %u) lies outside guest memory: the vertices "
+                      "there are not drawn",
+                      what, static_cast<unsigned long long>(maxIndex), vertexAddr, stride);
+        reportDrop(buf);
+        return;
+    }
+    if (mem_.valid(vertexAddr, count * stride)) return;
+    std::snprintf(buf, sizeof buf,
+                  "%s: %u vertices at 0x%08x (stride %u) run outside guest memory: the vertices there are not drawn",
+                  what, count, vertexAddr, stride);
+    reportDrop(buf);
 }
 
 void GeEngine::chargePixels() {
@@ -462,6 +529,15 @@ void GeEngine::chargePixels() {
         charge(getime::pixelCost(w - pixelWorkSeen_), &GeStats::cyclesPixels);
     }
     pixelWorkSeen_ = w;
+    if (drawEnd_ != ~u64(0) && stats_.cycles >= drawEnd_) {
+        // The pixels reached the host's bound on one draw: the renderer cut them there, so the
+        // draw took that long (its estimate counts the whole primitives).
+        stats_.cycles = drawEnd_;
+        stopRequested_ = true;
+        stopStatus_ = RunStatus::TimeLimit;
+        drawCut_ = true;
+        reportDrop("a draw whose pixels take more than the host's GE-time budget: cut there", true);
+    }
 }
 
 void GeEngine::doBBox(u32 arg) {

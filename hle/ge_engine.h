@@ -47,6 +47,10 @@ public:
     virtual void onFinish(u32 /*finishArg*/, u32 /*pc*/) {}
     virtual void onEnd(u32 /*pc*/) {}
     virtual void onError(GeError, u32 /*pc*/, const std::string& /*message*/) {}
+    // A draw at `pc` (the address after it) lost data or was cut, and the list goes on: vertices
+    // or indices outside guest memory, a patch past the tessellator's cap, a draw cut at the
+    // host's draw limit. Counted in GeStats::drawsDropped / drawsCut.
+    virtual void onDrop(u32 /*pc*/, const std::string& /*message*/) {}
     // The GE has read the list up to (not including) `pc`.
     virtual void onProgress(u32 /*pc*/) {}
 };
@@ -89,6 +93,8 @@ struct GeStats {
     // vertex work of draws, pixel fill, block transfers. They add up to `cycles` except when the
     // GE-time limit cut a draw short.
     u64 cyclesCommands = 0, cyclesVertices = 0, cyclesPixels = 0, cyclesTransfers = 0;
+    u64 drawsDropped = 0;  // draws that lost data (GeListener::onDrop)
+    u64 drawsCut = 0;      // draws cut at the host's draw limit (setDrawLimit)
 };
 
 class GeEngine {
@@ -124,6 +130,13 @@ public:
     // running the GE to an emulated time; ~0: none). Unlike the limit, it never cuts a draw: the
     // command that crosses it completes.
     void setCycleStop(u64 cycles) { cycleStop_ = cycles; }
+    // A host's bound on one draw (the plugin API's run budget; ~0: none): a draw whose vertex work
+    // alone would take more than `cycles` of GE time is not drawn, one whose pixels reach it is cut
+    // there (the renderer's pixel budget), and either way the run stops with RunStatus::TimeLimit
+    // after that command; the next run goes on with the command after it. drawCut() says a stop
+    // was such a cut (cleared when the next run starts).
+    void setDrawLimit(u64 cycles) { drawLimit_ = cycles; }
+    bool drawCut() const { return drawCut_; }
     RunStatus status() const { return status_; }
     // Ask the running list to pause after the current command (sceGeBreak); resume() clears it.
     void requestPause() { pauseRequested_ = true; }
@@ -186,6 +199,9 @@ private:
     // Charges the vertex work of a draw; false (and the run stops with TimeLimit) when it does not
     // fit in what is left of the GE-time limit. Hands the renderer the pixels that remain.
     bool chargeDraw(u64 vertexCycles);
+    // Reports (onDrop) what of a draw's vertex and index data lies outside guest memory.
+    void checkDrawData(const char* what, u32 vtype, u32 vertexAddr, u32 indexAddr, u32 count);
+    void reportDrop(const std::string& message, bool cut = false);  // counts it, tells the listener
 
     Memory& mem_;
     Renderer* renderer_ = nullptr;
@@ -203,6 +219,9 @@ private:
     u32 dirty_ = DIRTY_ALL;
     u64 cycleLimit_ = ~u64(0);
     u64 cycleStop_ = ~u64(0);
+    u64 drawLimit_ = ~u64(0);
+    u64 drawEnd_ = ~u64(0);  // this draw's cut point under drawLimit_ (chargeDraw/chargePixels)
+    bool drawCut_ = false;
     u64 pixelWorkSeen_ = 0;
     bool pixelBudgetSet_ = false;
     bool pauseRequested_ = false;

@@ -35,6 +35,7 @@ const char* sceRunStateName(SceRunState s) {
     case SceRunState::Hung: return "hung";
     case SceRunState::Reentrant: return "reentrant";
     case SceRunState::Break: return "break";
+    case SceRunState::TimeLimit: return "at its time limit";
     }
     return "?";
 }
@@ -284,6 +285,10 @@ void SceGe::onEnd(u32 pc) {
 void SceGe::onError(GeError, u32 pc, const std::string& message) {
     message_ = message;
     if (listener_ && active_ >= 0) listener_->onError(idOf(active_), pc, message);
+}
+
+void SceGe::onDrop(u32 pc, const std::string& message) {
+    if (listener_ && active_ >= 0) listener_->onDrop(idOf(active_), pc, message);
 }
 
 void SceGe::onProgress(u32 pc) {
@@ -662,7 +667,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     }
     inRun_ = true;
     u64 used = 0;
-    bool broke = false;
+    bool broke = false, timeLimit = false;
     for (;;) {
         if (queue_.empty()) break;
         if (engine_.stats().cycles >= tickStop_) break;
@@ -688,6 +693,11 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
             broke = true;
             break;
         }
+        if (s == RunStatus::TimeLimit) {
+            // The host's limit, not the list's: the list stays running and the next run goes on.
+            timeLimit = true;
+            break;
+        }
         if (s == RunStatus::Completed || s == RunStatus::Error) {
             // An error drops the list and the queue moves on (PPSSPP); the error callback has
             // already been delivered.
@@ -708,6 +718,7 @@ SceRunResult SceGe::runInternal(u64 maxCommands, int stopAfter) {
     SceRunResult r = peekRun();
     r.commands = used;
     if (broke) r.state = SceRunState::Break;
+    else if (timeLimit) r.state = SceRunState::TimeLimit;
     return r;
 }
 

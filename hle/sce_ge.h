@@ -85,6 +85,8 @@ public:
     // Every END the GE reads (INTEND).
     virtual void onEnd(s32 /*listId*/, u32 /*pc*/) {}
     virtual void onError(s32 /*listId*/, u32 /*pc*/, const std::string& /*message*/) {}
+    // A draw lost data or was cut and the list goes on (GeListener::onDrop).
+    virtual void onDrop(s32 /*listId*/, u32 /*pc*/, const std::string& /*message*/) {}
     // The GE has read list `listId` up to (not including) `pc`.
     virtual void onProgress(s32 /*listId*/, u32 /*pc*/) {}
 };
@@ -98,6 +100,7 @@ enum class SceRunState : u8 {
     Hung,      // the current list hit an END without SIGNAL/FINISH: the GE stops (uOFW, ge-rules.md §4.3)
     Reentrant, // run() was called from inside a callback
     Break,     // a command observer stopped the GE before a command (GeEngine::broke)
+    TimeLimit, // the engine's GE-time limit or draw limit stopped it (a draw may have been cut)
 };
 const char* sceRunStateName(SceRunState s);
 
@@ -239,6 +242,7 @@ private:
     void onFinish(u32 finishArg, u32 pc) override;
     void onEnd(u32 pc) override;
     void onError(GeError e, u32 pc, const std::string& message) override;
+    void onDrop(u32 pc, const std::string& message) override;
     void onProgress(u32 pc) override;
 
     s32 fail(s32 code, const std::string& msg) const;

@@ -77,6 +77,11 @@ public:
         if (os_) return osMakeCurrent_(os_, buffer_, GL_UNSIGNED_BYTE, 4, 4) == GL_TRUE;
         return eglMake_(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, egl_) == EGL_TRUE;
     }
+    // Leaves the thread with no context current.
+    void release() {
+        if (os_) osMakeCurrent_(nullptr, nullptr, 0, 0, 0);
+        else eglMake_(dpy_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
     // Is this host's context the one current on the calling thread?
     bool isCurrent() const { return os_ ? osGetCurrent_() == os_ : eglCur_() == egl_; }
     // The host's loader, as a host would hand it to ge2gl (config.gl_get_proc_address).

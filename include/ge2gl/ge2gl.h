@@ -60,7 +60,7 @@ extern "C" {
 /* API version: major in bits 31..16, minor in 15..0. A host built against major M works with any
  * library of major M and a minor at least its own. */
 #define GE2GL_API_VERSION_MAJOR 1
-#define GE2GL_API_VERSION_MINOR 4
+#define GE2GL_API_VERSION_MINOR 5
 #define GE2GL_API_VERSION ((uint32_t)((GE2GL_API_VERSION_MAJOR << 16) | GE2GL_API_VERSION_MINOR))
 
 typedef struct ge2gl_context ge2gl_context; /* opaque handle */
@@ -82,6 +82,11 @@ typedef int32_t ge2gl_status;
 #define GE2GL_ERR_UNSUPPORTED (-10)     /* e.g. a GL texture from the software backend */
 #define GE2GL_ERR_WRONG_THREAD (-11)    /* GL work asked on a thread that cannot reach the host's
                                            GL context (GL_CURRENT: not the creating thread) */
+#define GE2GL_ERR_GL_CONTEXT (-12)      /* API 1.5, GL_CURRENT: the context current on the calling
+                                           thread is not the one the instance was created with (nor
+                                           one sharing its objects), or none is; nothing was drawn */
+#define GE2GL_ERR_TIME_BUDGET (-13)     /* API 1.5: a draw took more than config.run_budget_us of GE
+                                           time and was cut there (the message says where) */
 /* PSP kernel error codes returned by the sceGe functions (values as on hardware). */
 #define GE2GL_SCE_ERROR_INVALID_STATE ((ge2gl_status)0x80000004u)
 #define GE2GL_SCE_ERROR_ALREADY ((ge2gl_status)0x80000020u)
@@ -209,6 +214,20 @@ typedef struct ge2gl_config {
     /* lazy_writeback: the GPU drew into [addr, addr+size) of VRAM (once per range until it is
        written back). Called on the thread that runs the GE, with callbacks.user. May be NULL. */
     void (*vram_dirty)(void* user, uint32_t addr, uint32_t size);
+    /* API 1.5. The emulated GE time, in microseconds of the PSP's GE clock, that one ge2gl_run or
+       ge2gl_run_until call may spend and that one draw may take anywhere: 0 = 166,667 (ten 60 Hz
+       frames, what dump replay allows a frame); UINT32_MAX = no limit. A run stops between
+       commands once the call has spent it (GE2GL_OK, ge_state GE2GL_GE_READY). A draw that alone
+       would take longer is cut there (its vertex work past the budget is not drawn, its pixels
+       stop at it) and the run or wait returns GE2GL_ERR_TIME_BUDGET; the list goes on after that
+       command at the next call. Counted in ge2gl_stats.draws_cut. */
+    uint32_t run_budget_us;
+    /* API 1.5. A draw lost data and the list went on: vertices or indices outside guest memory
+       (the vertices there are not drawn), a patch past the tessellator's cap of 2^21 vertices (not
+       drawn), a draw cut at run_budget_us. `pc` is the address after the draw command. Called on
+       the thread that runs the GE, with callbacks.user, under the same rules as the other
+       callbacks. May be NULL: ge2gl_get_stats counts them and keeps the last message. */
+    void (*drop)(void* user, int32_t list_id, uint32_t pc, const char* message);
 } ge2gl_config;
 
 /* The version of the library actually loaded. */
@@ -226,6 +245,18 @@ GE2GL_API void ge2gl_destroy(ge2gl_context* h);
 /* Why the last failing call on h failed ("" if it succeeded). Valid until the next call on h.
    NULL: why this thread's last ge2gl_create failed ("" if it succeeded). */
 GE2GL_API const char* ge2gl_last_message(ge2gl_context* h);
+
+/* API 1.5: counters since creation (or the last state load). */
+typedef struct ge2gl_stats {
+    uint32_t struct_size;   /* sizeof(ge2gl_stats), set by the caller */
+    uint64_t commands;      /* GE commands executed */
+    uint64_t draws;         /* PRIM, BEZIER and SPLINE commands */
+    uint64_t ge_ticks;      /* ge2gl_get_tick */
+    uint64_t draws_dropped; /* draws that lost data (config.drop) */
+    uint64_t draws_cut;     /* draws cut at config.run_budget_us */
+    char last_drop[256];    /* the last drop's message ("" if none) */
+} ge2gl_stats;
+GE2GL_API ge2gl_status ge2gl_get_stats(ge2gl_context* h, ge2gl_stats* out);
 
 /* ---- Guest memory ------------------------------------------------------------------------ */
 GE2GL_API ge2gl_status ge2gl_mem_write(ge2gl_context* h, uint32_t addr, const void* src, uint32_t size);
