@@ -2,8 +2,10 @@
 // The plugin API's handle and the guard every entry point runs under (api/*.cpp).
 //
 // Locking (docs/plugin-api.md "Threads"): one recursive mutex per handle serialises calls. The
-// thread that runs the GE (ge2gl_run, a wait, or the worker) holds it in chunks of kChunk
-// commands and lets waiting callers in between; it releases it around every host callback
+// thread that runs the GE (ge2gl_run, a wait, or the worker) holds it while it executes
+// commands, in chunks of kChunk commands with waiting callers let in between; it releases it
+// while the backend draws, flushes or writes back (RenderGate, render_gate.h: `rendering`), when
+// light calls (Call::Light) go on and the others wait; and around every host callback
 // (CListener::deliver), so a callback may block on another host thread that calls into ge2gl.
 // Peek syncs read a snapshot of the list states (snapshot mutex only), refreshed after every
 // chunk and every call, so they never wait for a draw.
@@ -32,6 +34,10 @@
 #include "hle/sce_ge.h"
 
 namespace ge2gl_impl {
+class RenderGate;
+}
+
+namespace ge2gl_impl {
 
 using ge::s32;
 using ge::u32;
@@ -50,6 +56,7 @@ public:
     void onEnd(s32 listId, u32 pc) override;
     void onError(s32 listId, u32 pc, const std::string& message) override;
     void onProgress(s32 listId, u32 pc) override;
+    void onDrop(s32 listId, u32 pc, const std::string& message) override;
 
 private:
     template <class F>
@@ -62,6 +69,7 @@ struct ge2gl_context {
     std::unique_ptr<ge::u8[]> ownedRam;  // only when the host gives VRAM but not RAM
     std::unique_ptr<ge::Memory> mem;
     std::unique_ptr<ge::Renderer> renderer;  // null for GE2GL_BACKEND_NULL (the engine's own null backend)
+    std::unique_ptr<ge2gl_impl::RenderGate> gate;  // what the engine draws through (render_gate.h)
     std::unique_ptr<ge::GeEngine> engine;
     std::unique_ptr<ge::SceGe> sce;
     ge2gl_impl::CListener listener;
@@ -69,6 +77,10 @@ struct ge2gl_context {
     ge::u64 waitBudget = ge::u64(1) << 26;
     bool lazyWriteback = false, holdInterrupts = false;
     void (*vramDirty)(void*, uint32_t, uint32_t) = nullptr;
+    void (*drop)(void*, int32_t, uint32_t, const char*) = nullptr;  // config.drop
+    std::string lastDrop;                                          // ge2gl_stats.last_drop
+    ge::u64 runBudget = ~ge::u64(0);  // config.run_budget_us in GE cycles (~0: none)
+    bool timeCut = false;             // the last wait stopped at a draw cut at runBudget
     std::thread::id glThread;  // GL_CURRENT: the thread whose context ge2gl draws on
 
     std::recursive_mutex mu;
@@ -78,7 +90,14 @@ struct ge2gl_context {
     // The thread running the GE under mu: its lock (released around callbacks) and whether it
     // entered the GL scope. Set only while the GE runs.
     std::unique_lock<std::recursive_mutex>* runLock = nullptr;
+    std::thread::id runThread;
     bool runGl = false;
+    // The GE-running thread is inside the backend with mu released (RenderGate). Calls that are
+    // not light wait on renderIdle until it is back; light calls defer what they would tell the
+    // backend to pendingWrites / pendingHostWrote, handed over when it is back (applyDeferred).
+    bool rendering = false;
+    std::condition_variable_any renderIdle;
+    bool pendingHostWrote = false, pendingHostWroteFb = false;
     std::thread::id deliverThread;  // the thread inside a host callback (runs/waits: reentrant)
     bool held = false;              // hold_interrupts: waiting for ge2gl_interrupt_ack
     // mem_written from a thread that cannot reach GL_CURRENT's context: applied on next entry.
@@ -109,15 +128,23 @@ struct ge2gl_context {
 
 namespace ge2gl_impl {
 
-// Per-call guard: takes the handle's lock (announcing itself to the GE-running thread), clears
-// the message; on return leaves the GL scope, refreshes the peek snapshot, wakes the worker.
+// What a call needs of the backend while the GE thread draws (render_gate.h).
+enum class CallKind {
+    Waits,  // touches the backend or needs the engine between commands: waits while `rendering`
+    Light,  // reads engine/queue state or writes guest memory only: goes on during a draw
+};
+
+// Per-call guard: takes the handle's lock (announcing itself to the GE-running thread), waits
+// until no draw is in progress unless the call is light, clears the message; on return leaves
+// the GL scope, refreshes the peek snapshot, wakes the worker.
 class Call {
 public:
-    explicit Call(ge2gl_context* h);
+    explicit Call(ge2gl_context* h, CallKind kind = CallKind::Waits);
     ~Call();
     std::unique_lock<std::recursive_mutex>& lock() { return lk_; }
     // Enters the GL scope for this call (no-op for other backends). Fails with
-    // GE2GL_ERR_WRONG_THREAD (GL_CURRENT on another thread) or GE2GL_ERR_BACKEND.
+    // GE2GL_ERR_WRONG_THREAD (GL_CURRENT on another thread), GE2GL_ERR_GL_CONTEXT (GL_CURRENT with
+    // another context or none current) or GE2GL_ERR_BACKEND.
     ge2gl_status gl();
     bool glEntered() const { return glEntered_; }
     // True when GL work is possible from this thread (GL_CURRENT: the creating thread).
@@ -147,6 +174,12 @@ ge2gl_status guarded(ge2gl_context* h, F&& f) {
 }
 
 void refreshSnapshot(ge2gl_context* h);
+// The GE thread, back from the backend with the lock: hands over what light calls deferred.
+void applyDeferred(ge2gl_context* h);
+// For light calls: memory written / the host may have written, told to the backend now or, while
+// a draw is in progress or GL is out of reach, when it can be.
+void tellWritten(ge2gl_context* h, Call& c, ge::u32 addr, ge::u32 size);
+void tellHostMayHaveWritten(ge2gl_context* h, bool frameBuffers);
 // Lazy write-back: hands newly drawn VRAM ranges to config.vram_dirty (lock released).
 void announceDirty(ge2gl_context* h);
 // Runs or waits from inside a callback, or on the worker, are refused.

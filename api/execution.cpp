@@ -14,6 +14,12 @@ namespace ge2gl_impl {
 
 namespace {
 
+std::string hex8(u32 v) {
+    char b[12];
+    std::snprintf(b, sizeof b, "%08x", v);
+    return b;
+}
+
 ge2gl_interrupt convert(const ge::SceInterrupt& in) {
     ge2gl_interrupt out{};
     out.list_id = in.listId;
@@ -47,13 +53,41 @@ bool glEnter(ge2gl_context* h, std::string& err) {
 #endif
 }
 
-// Applies mem_written ranges queued by threads that could not reach the GL context.
+// Applies mem_written ranges queued by threads that could not reach the GL context or came
+// while a draw was in progress. Straight to the backend: the caller holds the lock.
 void applyPendingWrites(ge2gl_context* h) {
-    for (auto [a, n] : h->pendingWrites) h->engine->renderer()->memoryWritten(a, n);
+    if (h->renderer)
+        for (auto [a, n] : h->pendingWrites) h->renderer->memoryWritten(a, n);
     h->pendingWrites.clear();
 }
 
 }  // namespace
+
+void applyDeferred(ge2gl_context* h) {
+    if (h->pendingHostWrote) {
+        if (h->renderer) h->renderer->hostMayHaveWritten(h->pendingHostWroteFb);
+        h->pendingHostWrote = h->pendingHostWroteFb = false;
+    }
+    // GL_CURRENT's writes from other threads wait for GL (the next call that enters it).
+    if (!h->pendingWrites.empty() && (!h->isGl() || h->runGl)) applyPendingWrites(h);
+}
+
+void tellWritten(ge2gl_context* h, Call& c, u32 addr, u32 size) {
+    if (h->rendering || !c.glReachable()) {
+        h->pendingWrites.emplace_back(addr, size);
+        return;
+    }
+    h->engine->renderer()->memoryWritten(addr, size);
+}
+
+void tellHostMayHaveWritten(ge2gl_context* h, bool frameBuffers) {
+    if (h->rendering) {
+        h->pendingHostWrote = true;
+        h->pendingHostWroteFb = h->pendingHostWroteFb || frameBuffers;
+        return;
+    }
+    h->engine->renderer()->hostMayHaveWritten(frameBuffers);
+}
 
 // ---- Interrupt delivery -------------------------------------------------------------------
 
@@ -126,6 +160,14 @@ void CListener::onError(s32 listId, u32 pc, const std::string& message) {
     deliver([&] { cb.error(cb.user, listId, pc, copy.c_str()); });
 }
 
+void CListener::onDrop(s32 listId, u32 pc, const std::string& message) {
+    h->lastDrop = message;
+    if (!h->drop) return;
+    const std::string copy = message;
+    auto* fn = h->drop;
+    deliver([&] { fn(cb.user, listId, pc, copy.c_str()); });
+}
+
 void CListener::onProgress(s32 listId, u32 pc) {
     if (cb.progress) deliver([&] { cb.progress(cb.user, listId, pc); });
 }
@@ -157,9 +199,11 @@ void announceDirty(ge2gl_context* h) {
 
 // ---- Call guard ---------------------------------------------------------------------------
 
-Call::Call(ge2gl_context* h) : h_(h), lk_(h->mu, std::defer_lock) {
+Call::Call(ge2gl_context* h, CallKind kind) : h_(h), lk_(h->mu, std::defer_lock) {
     h_->waiters.fetch_add(1);
     lk_.lock();
+    // Still counted as a waiter: the GE thread lets it in at the next chunk boundary.
+    if (kind == CallKind::Waits) h_->renderIdle.wait(lk_, [h] { return !h->rendering; });
     h_->waiters.fetch_sub(1);
     h_->message.clear();
     h_->sce->clearMessage();
@@ -182,7 +226,11 @@ ge2gl_status Call::gl() {
                      "GL_CURRENT draws on the host's context, current on the thread that created the handle; "
                      "call this from that thread");
     std::string err;
-    if (!glEnter(h_, err)) return error(GE2GL_ERR_BACKEND, "cannot make the GL context current here: " + err);
+    if (!glEnter(h_, err)) {
+        // GL_CURRENT enters by checking that the host's context is the one it was created with.
+        if (h_->backend == GE2GL_BACKEND_GL_CURRENT) return error(GE2GL_ERR_GL_CONTEXT, err);
+        return error(GE2GL_ERR_BACKEND, "cannot make the GL context current here: " + err);
+    }
     glEntered_ = true;
     applyPendingWrites(h_);
     return GE2GL_OK;
@@ -225,6 +273,7 @@ bool refuseMidRunCommand(const ge2gl_context* h) { return reentrant(h) || h->sce
 
 ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter) {
     h->runLock = &c.lock();
+    h->runThread = std::this_thread::get_id();
     h->runGl = c.glEntered();
     ge::SceRunResult r = h->sce->peekRun();
     u64 used = 0;
@@ -261,6 +310,7 @@ ge::SceRunResult drive(ge2gl_context* h, Call& c, u64 budget, s32 stopAfter) {
 }
 
 bool waitUntil(ge2gl_context* h, Call& c, const std::function<bool()>& done, std::string& why, s32 stopAfter) {
+    h->timeCut = false;
     auto stuck = [&](const ge::SceRunResult& r) {
         char buf[160];
         if (h->held)
@@ -284,6 +334,12 @@ bool waitUntil(ge2gl_context* h, Call& c, const std::function<bool()>& done, std
             }
             const ge::SceRunResult r = drive(h, c, std::min<u64>(h->waitBudget - used, u64(1) << 20), stopAfter);
             used += r.commands;
+            if (r.state == ge::SceRunState::TimeLimit) {
+                h->timeCut = true;
+                why = "a draw before 0x" + hex8(r.pc) + " took more than config.run_budget_us of GE time and was cut " +
+                      "there (" + h->lastDrop + "); the list goes on after it";
+                return false;
+            }
             if (r.commands == 0 && !done() && h->sce->canProgress() && !h->held) {
                 why = h->message.empty() ? "the GE made no progress" : h->message;
                 return false;
@@ -331,6 +387,7 @@ void ge2gl_context::workerLoop() {
             }
             if (gl) applyPendingWrites(this);
             runLock = &lk;
+            runThread = std::this_thread::get_id();
             runGl = gl;
             const ge::SceRunResult r = sce->run(kChunk);
             announceDirty(this);
@@ -357,16 +414,31 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
     ge::SceRunResult r = h->sce->peekRun();
     if (max_commands && !h->held && h->sce->canProgress()) {
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
+        // The call's GE-time budget ends the run between commands like a tick (no draw is cut).
+        const u64 now = h->engine->stats().cycles;
+        if (h->runBudget != ~u64(0)) tick = std::min<u64>(tick, now + std::min(h->runBudget, ~u64(0) - now - 1));
         h->sce->setTickStop(tick);
         r = drive(h, c, max_commands);
         h->sce->setTickStop(~u64(0));
         // The software model rasterises on band threads behind the GE. When the GE stops where the
         // host may write guest memory itself (a stall, idle, a pause, a held interrupt), those
         // draws finish first: a host write in place must land after the draws issued before it.
-        if (h->backend == GE2GL_BACKEND_SOFT && (r.state != ge::SceRunState::Budget || h->held))
+        // With the lock released like any draw (render_gate.h).
+        if (h->backend == GE2GL_BACKEND_SOFT && (r.state != ge::SceRunState::Budget || h->held)) {
+            h->runLock = &c.lock();
+            h->runThread = std::this_thread::get_id();
             h->engine->renderer()->flushToMemory();
+            h->runLock = nullptr;
+        }
         if (r.state == ge::SceRunState::Reentrant)
             return c.error(GE2GL_ERR_REENTRANT, "ge2gl_run cannot be called from inside a GE callback");
+    }
+    ge2gl_status status = GE2GL_OK;
+    if (r.state == ge::SceRunState::TimeLimit) {
+        status = c.error(GE2GL_ERR_TIME_BUDGET, "the draw before 0x" + hex8(r.pc) +
+                                                    " took more than config.run_budget_us of GE time and was cut there (" +
+                                                    h->lastDrop + "); the list goes on after it at the next call");
+        r.state = ge::SceRunState::Budget;
     }
     if (out) {
         switch (r.state) {
@@ -383,7 +455,7 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
         out->stall = r.stall;
         out->commands = max_commands ? r.commands : 0;
     }
-    return GE2GL_OK;
+    return status;
 }
 
 }  // namespace ge2gl_impl
@@ -408,7 +480,7 @@ ge2gl_status ge2gl_list_sync(ge2gl_context* h, int32_t id, int32_t mode, int32_t
         // Errors go the locked way, which sets the message.
     }
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, mode == GE2GL_SYNC_WAIT ? CallKind::Waits : CallKind::Light);
         if (mode != GE2GL_SYNC_WAIT) return c.sceResult(h->sce->listSync(id, mode), out_state);
         if (reentrant(h)) return c.error(GE2GL_ERR_REENTRANT, "a wait-mode sync cannot run from inside a GE callback");
         // Validate the ID first (peek), then wait.
@@ -429,7 +501,8 @@ ge2gl_status ge2gl_list_sync(ge2gl_context* h, int32_t id, int32_t mode, int32_t
             ge::SceListState s = h->sce->listState(id);
             return s == ge::SceListState::Completed || s == ge::SceListState::None;
         };
-        if (!waitUntil(h, c, done, why, id)) return c.error(GE2GL_ERR_WOULD_BLOCK, "list cannot complete: " + why);
+        if (!waitUntil(h, c, done, why, id))
+            return c.error(h->timeCut ? GE2GL_ERR_TIME_BUDGET : GE2GL_ERR_WOULD_BLOCK, "list cannot complete: " + why);
         if (out_state) *out_state = GE2GL_LIST_COMPLETED;
         return GE2GL_OK;
     });
@@ -448,14 +521,15 @@ ge2gl_status ge2gl_draw_sync(ge2gl_context* h, int32_t mode, int32_t* out_state)
         }
     }
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, mode == GE2GL_SYNC_WAIT ? CallKind::Waits : CallKind::Light);
         if (mode == GE2GL_SYNC_WAIT) {
             if (reentrant(h)) return c.error(GE2GL_ERR_REENTRANT, "a wait-mode sync cannot run from inside a GE callback");
             if (!h->workerMode)
                 if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
             std::string why;
             auto done = [&] { return h->sce->drawSync(GE2GL_SYNC_PEEK) == GE2GL_LIST_COMPLETED; };
-            if (!waitUntil(h, c, done, why)) return c.error(GE2GL_ERR_WOULD_BLOCK, "drawing cannot complete: " + why);
+            if (!waitUntil(h, c, done, why))
+                return c.error(h->timeCut ? GE2GL_ERR_TIME_BUDGET : GE2GL_ERR_WOULD_BLOCK, "drawing cannot complete: " + why);
             // The queue is empty: this only frees the completed lists.
         }
         return c.sceResult(h->sce->drawSync(mode), out_state);
@@ -470,9 +544,25 @@ ge2gl_status ge2gl_run_until(ge2gl_context* h, uint64_t tick, ge2gl_run_info* ou
     return guarded(h, [&]() -> ge2gl_status { return runFor(h, h->waitBudget, tick, out); });
 }
 
+ge2gl_status ge2gl_get_stats(ge2gl_context* h, ge2gl_stats* out) {
+    return guarded(h, [&]() -> ge2gl_status {
+        Call c(h, CallKind::Light);
+        if (!out || out->struct_size < sizeof(ge2gl_stats))
+            return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out is NULL or its struct_size is not sizeof(ge2gl_stats)");
+        const ge::GeStats& st = h->engine->stats();
+        out->commands = st.commands;
+        out->draws = st.prims + st.patches;
+        out->ge_ticks = st.cycles;
+        out->draws_dropped = st.drawsDropped;
+        out->draws_cut = st.drawsCut;
+        std::snprintf(out->last_drop, sizeof out->last_drop, "%s", h->lastDrop.c_str());
+        return GE2GL_OK;
+    });
+}
+
 ge2gl_status ge2gl_get_tick(ge2gl_context* h, uint64_t* out_tick) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out_tick) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_tick is NULL");
         *out_tick = h->engine->stats().cycles;
         return GE2GL_OK;
@@ -481,7 +571,7 @@ ge2gl_status ge2gl_get_tick(ge2gl_context* h, uint64_t* out_tick) {
 
 ge2gl_status ge2gl_list_ticks(ge2gl_context* h, int32_t id, uint64_t* out_ticks) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out_ticks) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_ticks is NULL");
         const ge::s64 t = h->sce->listCycles(id);
         if (t < 0) return c.error(GE2GL_SCE_ERROR_INVALID_ID, "no list with this ID");

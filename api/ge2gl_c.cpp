@@ -6,11 +6,13 @@
 // Every entry point catches C++ exceptions (allocation failures) and turns them into status codes:
 // nothing throws across the C boundary.
 #include "api/context.h"
+#include "api/render_gate.h"
 
 #include <cstddef>
 #include <cstdio>
 #include <new>
 
+#include "hle/ge_time.h"
 #include "hle/pixel_format.h"
 #include "softmodel/soft_renderer.h"
 #ifdef GE2GL_HAVE_GL
@@ -49,6 +51,8 @@ const char* ge2gl_status_name(ge2gl_status s) {
     case GE2GL_ERR_OUT_OF_HOST_MEMORY: return "GE2GL_ERR_OUT_OF_HOST_MEMORY";
     case GE2GL_ERR_UNSUPPORTED: return "GE2GL_ERR_UNSUPPORTED";
     case GE2GL_ERR_WRONG_THREAD: return "GE2GL_ERR_WRONG_THREAD";
+    case GE2GL_ERR_GL_CONTEXT: return "GE2GL_ERR_GL_CONTEXT";
+    case GE2GL_ERR_TIME_BUDGET: return "GE2GL_ERR_TIME_BUDGET";
     case GE2GL_SCE_ERROR_INVALID_STATE: return "SCE_ERROR_INVALID_STATE (0x80000004)";
     case GE2GL_SCE_ERROR_ALREADY: return "SCE_ERROR_ALREADY (0x80000020)";
     case GE2GL_SCE_ERROR_BUSY: return "SCE_ERROR_BUSY (0x80000021)";
@@ -157,7 +161,9 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
 #endif
         }
         }
-        h->engine = std::make_unique<ge::GeEngine>(*h->mem, h->renderer.get());
+        // The engine draws through the gate, which leaves the handle's lock while the backend works.
+        if (h->renderer) h->gate = std::make_unique<RenderGate>(h.get(), h->renderer.get());
+        h->engine = std::make_unique<ge::GeEngine>(*h->mem, h->gate.get());
         h->sce = std::make_unique<ge::SceGe>(*h->engine);
         h->listener.h = h.get();
         h->listener.cb = cfg->callbacks;
@@ -171,6 +177,15 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
             h->sce->setHandlersDeferred(h->holdInterrupts);
             h->vramDirty = cfg->vram_dirty;
         }
+        // API 1.5: the run budget (default: ten 60 Hz frames of GE time, dump replay's frame
+        // budget) and the drop callback.
+        u32 budgetUs = 0;
+        if (has(offsetof(ge2gl_config, run_budget_us), sizeof(cfg->run_budget_us))) budgetUs = cfg->run_budget_us;
+        if (has(offsetof(ge2gl_config, drop), sizeof(cfg->drop))) h->drop = cfg->drop;
+        h->runBudget = budgetUs == UINT32_MAX ? ~u64(0)
+                     : budgetUs == 0           ? ge::getime::cyclesFromMs(1000.0 / 6.0)
+                                               : u64(budgetUs) * (ge::getime::kCyclesPerSecond / 1'000'000);
+        h->engine->setDrawLimit(h->runBudget);
         refreshSnapshot(h.get());
         if (cfg->worker_thread) {
             h->workerMode = true;
@@ -200,6 +215,7 @@ void ge2gl_destroy(ge2gl_context* h) {
     // renderer makes its context current for its own deletes and restores the thread's after.
     h->sce.reset();
     h->engine.reset();
+    h->gate.reset();
     h->renderer.reset();
     delete h;
 }
@@ -230,14 +246,20 @@ ge2gl_status memCheck(Call& c, ge2gl_context* h, uint32_t addr, uint32_t size) {
 
 }  // namespace
 
+// Frame and depth buffers live in VRAM (manual §9.1, FBP/ZBP): a backend holds pixels newer than
+// guest memory only there. A write to RAM therefore cannot overwrite a draw's output and goes
+// on while the GE thread draws (the backend hears of it when the draw returns); one to VRAM
+// waits for the draw in progress.
+static CallKind writeKind(uint32_t addr) { return ge::Memory::isVram(addr) ? CallKind::Waits : CallKind::Light; }
+
 ge2gl_status ge2gl_mem_write(ge2gl_context* h, uint32_t addr, const void* src, uint32_t size) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, writeKind(addr));
         if (!src && size) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "src is NULL");
         if (ge2gl_status s = memCheck(c, h, addr, size); s != GE2GL_OK) return s;
-        if (!c.glReachable()) {
+        if (h->rendering || !c.glReachable()) {
             h->mem->write(addr, src, size);
-            h->pendingWrites.emplace_back(addr, size);
+            tellWritten(h, c, addr, size);
             return GE2GL_OK;
         }
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
@@ -268,7 +290,7 @@ ge2gl_status ge2gl_mem_read(ge2gl_context* h, uint32_t addr, void* dst, uint32_t
 
 ge2gl_status ge2gl_mem_pointer(ge2gl_context* h, uint32_t addr, uint32_t size, uint8_t** out) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out is NULL");
         *out = h->mem->ptr(addr, size);
         return *out ? GE2GL_OK : memCheck(c, h, addr, size == 0 ? 1 : size);
@@ -277,10 +299,10 @@ ge2gl_status ge2gl_mem_pointer(ge2gl_context* h, uint32_t addr, uint32_t size, u
 
 ge2gl_status ge2gl_mem_written(ge2gl_context* h, uint32_t addr, uint32_t size) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, writeKind(addr));
         if (ge2gl_status s = memCheck(c, h, addr, size); s != GE2GL_OK) return s;
-        if (!c.glReachable()) {
-            h->pendingWrites.emplace_back(addr, size);
+        if (h->rendering || !c.glReachable()) {
+            tellWritten(h, c, addr, size);
             return GE2GL_OK;
         }
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
@@ -304,7 +326,7 @@ ge2gl_status ge2gl_sync_range(ge2gl_context* h, uint32_t addr, uint32_t size) {
 static ge2gl_status enqueue(ge2gl_context* h, uint32_t list, uint32_t stall, int32_t cbid, const ge2gl_list_args* args,
                             int32_t* outId, bool head) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         ge::SceListArgs a;
         if (args) {
             a.size = args->size;
@@ -313,7 +335,7 @@ static ge2gl_status enqueue(ge2gl_context* h, uint32_t list, uint32_t stall, int
             a.stackAddr = args->stacks;
         }
         // The CPU wrote the list's textures, CLUTs and perhaps frame buffers before queueing it.
-        h->engine->renderer()->hostMayHaveWritten(true);
+        tellHostMayHaveWritten(h, true);
         return c.sceResult(h->sce->listEnqueue(list, stall, cbid, args ? &a : nullptr, head), outId);
     });
 }
@@ -337,10 +359,10 @@ ge2gl_status ge2gl_list_dequeue(ge2gl_context* h, int32_t id) {
 
 ge2gl_status ge2gl_list_update_stall(ge2gl_context* h, int32_t id, uint32_t stall) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         // Data for the commands up to the new stall may be new (textures; frame buffers are
         // checked at enqueue and continue only: a per-stall check would hash them per block).
-        h->engine->renderer()->hostMayHaveWritten(false);
+        tellHostMayHaveWritten(h, false);
         return c.sceResult(h->sce->listUpdateStallAddr(id, stall), nullptr);
     });
 }
@@ -407,7 +429,7 @@ ge2gl_status ge2gl_restore_context_at(ge2gl_context* h, uint32_t guest_addr) {
 
 ge2gl_status ge2gl_get_cmd(ge2gl_context* h, uint32_t op, uint32_t* out_word) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out_word) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_word is NULL");
         return c.sceResult(h->sce->getCmd(op, out_word), nullptr);
     });
@@ -423,7 +445,7 @@ ge2gl_status ge2gl_set_sdk_version(ge2gl_context* h, uint32_t version) {
 
 ge2gl_status ge2gl_get_registers(ge2gl_context* h, uint32_t out[256]) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out is NULL");
         for (u32 op = 0; op < 0xFF; ++op) {
             s32 r = h->sce->getCmd(op, &out[op]);
@@ -436,7 +458,7 @@ ge2gl_status ge2gl_get_registers(ge2gl_context* h, uint32_t out[256]) {
 
 ge2gl_status ge2gl_get_stack(ge2gl_context* h, int32_t index, uint32_t out[8], int32_t* out_depth) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         s32 r = h->sce->getStack(index, out);
         if (r >= 0 && out_depth) *out_depth = r;
         return c.sceResult(r, nullptr);
@@ -445,7 +467,7 @@ ge2gl_status ge2gl_get_stack(ge2gl_context* h, int32_t index, uint32_t out[8], i
 
 ge2gl_status ge2gl_get_matrix(ge2gl_context* h, int32_t type, uint32_t out[16], int32_t* out_count) {
     return guarded(h, [&]() -> ge2gl_status {
-        Call c(h);
+        Call c(h, CallKind::Light);
         if (!out) return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out is NULL");
         int n = 0;
         s32 r = h->sce->getMtx(type, out, &n);

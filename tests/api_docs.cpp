@@ -53,6 +53,20 @@ TEST(ApiDocs, ExamplesCompileAsWritten) {
     }
 }
 
+// ge2gl.hpp says it needs C++14: it compiles there without warnings, and not with C++11 (so the
+// statement stays true if the header starts using something newer, this fails).
+TEST(ApiDocs, CppWrapperNeedsCpp14) {
+    if (std::system("c++ --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no c++ on PATH";
+    const std::string tmp = std::string(GE2GL_BINARY_DIR) + "/api_docs_check";
+    std::system(("mkdir -p '" + tmp + "'").c_str());
+    const std::string file = tmp + "/wrapper.cpp";
+    std::ofstream(file) << "#include \"ge2gl/ge2gl.hpp\"\nint main() { return 0; }\n";
+    const std::string cmd = " -Wall -Wextra -Werror -pedantic -fsyntax-only -I'" + std::string(GE2GL_SOURCE_DIR) +
+                            "/include' '" + file + "' > /dev/null 2>&1";
+    EXPECT_EQ(std::system(("c++ -std=c++14" + cmd).c_str()), 0);
+    EXPECT_NE(std::system(("c++ -std=c++11" + cmd).c_str()), 0);
+}
+
 // Loading the library without asking for a headless context maps no OSMesa, EGL or LLVM
 // (tools/load_probe.c in a fresh process; its cost is the LibraryLoad benchmark's).
 TEST(ApiFootprint, LoadingTheLibraryMapsNoGlStack) {

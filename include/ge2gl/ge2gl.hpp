@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // ge2gl C++ wrapper: RAII ownership of a ge2gl_context and std::function callbacks over the C ABI.
-// Header-only; it links only against the C functions of ge2gl.h, so it works with any compiler that
-// can call the shared library. No exceptions cross the C boundary: the callback trampolines catch
+// Header-only; it links only against the C functions of ge2gl.h, so any C++14 compiler can use it
+// with the shared library whatever compiled that (the example below uses C++20's designated
+// initializers; ApiDocs checks the header with -std=c++14). No exceptions cross the C boundary: the callback trampolines catch
 // everything a std::function throws (the exception is dropped and reported through
 // Context::callbackFailures()).
 //
