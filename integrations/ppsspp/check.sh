@@ -24,13 +24,15 @@ set -euo pipefail
 [ $# -ge 2 ] && [ $# -le 3 ] || { sed -n '4,20p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 out=$(cd "$1" && pwd)
 autotests=$(cd "$2" && pwd)
-frametests=${3:-}
+frametests=${3:+$(cd "$3" && pwd)}
 headless="$out/PPSSPPHeadless"
 [ -x "$headless" ] || { echo "check.sh: no $headless (run build.sh first)" >&2; exit 2; }
 read -r -a cores <<<"${CORES:-software ge2gl ge2gl-gl}"
 timeout_s=${TIMEOUT:-60}
 work="$out/check"
 mkdir -p "$work"
+# PPSSPPHeadless writes __testcompare.png / __testfailure.bmp into its working directory.
+cd "$work"
 
 mapfile -t tests < <(cd "$autotests" && find tests/gpu -name '*.prx' | sed 's/\.prx$//' | sort | grep -E "${ONLY:-.}")
 [ ${#tests[@]} -gt 0 ] || { echo "check.sh: no tests/gpu/*.prx under $autotests" >&2; exit 2; }
