@@ -12,6 +12,8 @@
 #include <GL/glcorearb.h>
 #include <GL/osmesa.h>
 
+#include <algorithm>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -242,22 +244,25 @@ private:
         return fn != nullptr;
     }
     bool load() {
-        return get(GetString, "glGetString") & get(GetIntegerv, "glGetIntegerv") & get(GetBooleanv, "glGetBooleanv") &
-               get(IsEnabled, "glIsEnabled") & get(Enable, "glEnable") & get(Disable, "glDisable") &
-               get(Viewport, "glViewport") & get(Scissor, "glScissor") & get(ColorMask, "glColorMask") &
-               get(DepthMask, "glDepthMask") & get(DepthFunc, "glDepthFunc") & get(BlendFunc, "glBlendFunc") &
-               get(PixelStorei, "glPixelStorei") & get(ActiveTexture, "glActiveTexture") &
-               get(GenTextures, "glGenTextures") & get(BindTexture, "glBindTexture") & get(TexImage2D, "glTexImage2D") &
-               get(GetTexLevelParameteriv, "glGetTexLevelParameteriv") & get(GenSamplers, "glGenSamplers") &
-               get(BindSampler, "glBindSampler") & get(GenFramebuffers, "glGenFramebuffers") &
-               get(BindFramebuffer, "glBindFramebuffer") & get(FramebufferTexture2D, "glFramebufferTexture2D") &
-               get(ReadPixels, "glReadPixels") & get(GenVertexArrays, "glGenVertexArrays") &
-               get(BindVertexArray, "glBindVertexArray") & get(GenBuffers, "glGenBuffers") &
-               get(BindBuffer, "glBindBuffer") & get(BufferData, "glBufferData") &
-               get(CreateProgram, "glCreateProgram") & get(UseProgram, "glUseProgram") &
-               get(CreateShader, "glCreateShader") & get(ShaderSource, "glShaderSource") &
-               get(CompileShader, "glCompileShader") & get(AttachShader, "glAttachShader") &
-               get(LinkProgram, "glLinkProgram") & get(ProvokingVertex, "glProvokingVertex") & get(GetError, "glGetError");
+        // Every entry point is looked up, present or not: each one is set or null afterwards.
+        const bool found[] = {
+            get(GetString, "glGetString"), get(GetIntegerv, "glGetIntegerv"), get(GetBooleanv, "glGetBooleanv"),
+            get(IsEnabled, "glIsEnabled"), get(Enable, "glEnable"), get(Disable, "glDisable"),
+            get(Viewport, "glViewport"), get(Scissor, "glScissor"), get(ColorMask, "glColorMask"),
+            get(DepthMask, "glDepthMask"), get(DepthFunc, "glDepthFunc"), get(BlendFunc, "glBlendFunc"),
+            get(PixelStorei, "glPixelStorei"), get(ActiveTexture, "glActiveTexture"),
+            get(GenTextures, "glGenTextures"), get(BindTexture, "glBindTexture"), get(TexImage2D, "glTexImage2D"),
+            get(GetTexLevelParameteriv, "glGetTexLevelParameteriv"), get(GenSamplers, "glGenSamplers"),
+            get(BindSampler, "glBindSampler"), get(GenFramebuffers, "glGenFramebuffers"),
+            get(BindFramebuffer, "glBindFramebuffer"), get(FramebufferTexture2D, "glFramebufferTexture2D"),
+            get(ReadPixels, "glReadPixels"), get(GenVertexArrays, "glGenVertexArrays"),
+            get(BindVertexArray, "glBindVertexArray"), get(GenBuffers, "glGenBuffers"),
+            get(BindBuffer, "glBindBuffer"), get(BufferData, "glBufferData"), get(CreateProgram, "glCreateProgram"),
+            get(UseProgram, "glUseProgram"), get(CreateShader, "glCreateShader"),
+            get(ShaderSource, "glShaderSource"), get(CompileShader, "glCompileShader"),
+            get(AttachShader, "glAttachShader"), get(LinkProgram, "glLinkProgram"),
+            get(ProvokingVertex, "glProvokingVertex"), get(GetError, "glGetError")};
+        return std::all_of(std::begin(found), std::end(found), [](bool f) { return f; });
     }
     void makeObjects() {
         objects_ = true;

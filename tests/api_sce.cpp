@@ -15,7 +15,7 @@ using namespace apitest;
 namespace {
 
 // Opcodes used as observable "markers" (plain state registers, no side effects).
-constexpr uint32_t TEC = 0xCA, MDC = 0x56, MSC = 0x57, FC = 0xCF;
+constexpr uint32_t TEC = 0xCA, MDC = 0x56, MSC = 0x57;
 constexpr uint32_t BASE = 0x10, OFFSET = 0x13, JUMP = 0x08, CALL = 0x0A, RET = 0x0B, END = 0x0C;
 constexpr uint32_t L0 = 0x08100000;  // where the tests put their lists
 

@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <regex>
 #include <sstream>
 
@@ -242,17 +241,6 @@ TEST(Batch, ShardsTakeEveryNthDumpInNameOrder) {
     EXPECT_EQ(s2[1].path, "d/e.zip");
     EXPECT_EQ(tools::shardDumps(all, tools::Shard{1, 2}).size(), 3u);
     EXPECT_TRUE(tools::shardDumps(all, tools::Shard{7, 8}).empty());
-}
-
-TEST(Batch, JsonNumbersReadBackExactly) {
-    for (double v : {0.0, 0.1, 1.0 / 3, 999.0, 1.5e-5, 65025.0, 0.057426981209150324}) {
-        const std::string s = tools::jsonNumber(v);
-        EXPECT_EQ(std::stod(s), v) << s;
-    }
-    EXPECT_EQ(tools::jsonNumber(0.1), "0.1");
-    EXPECT_EQ(tools::jsonNumber(999.0), "999");
-    EXPECT_EQ(tools::jsonNumber(std::numeric_limits<double>::infinity()), "999");  // PSNR of identical pictures
-    EXPECT_EQ(tools::jsonString("a\"b\\c\nd"), "\"a\\\"b\\\\c\\u000ad\"");
 }
 
 namespace {

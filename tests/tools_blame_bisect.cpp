@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include "hle/dump/player.h"
 #include "hle/list_builder.h"
 #include "tools/lib/draw_hook.h"
+#include "tools/lib/json_io.h"
 #include "tools/lib/render.h"
 #include "tests/tools_cli_run.h"
 
@@ -78,73 +78,13 @@ void save(const dump::Dump& d, const fs::path& p) {
     ASSERT_TRUE(dump::saveDump(p.string(), d, err)) << err;
 }
 
-// A minimal JSON reader: checks the syntax and collects the top-level members as raw text.
-struct Json {
-    std::string s;
-    size_t i = 0;
-    std::map<std::string, std::string> top;
-    explicit Json(std::string text) : s(std::move(text)) {}
-    void ws() {
-        while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
-    }
-    bool str(std::string* out = nullptr) {
-        if (i >= s.size() || s[i] != '"') return false;
-        std::string v;
-        for (++i; i < s.size() && s[i] != '"'; ++i) {
-            if (static_cast<unsigned char>(s[i]) < 0x20) return false;
-            if (s[i] == '\\') {
-                if (++i >= s.size()) return false;
-            }
-            v += s[i];
-        }
-        if (i >= s.size()) return false;
-        ++i;
-        if (out) *out = v;
-        return true;
-    }
-    bool value(int depth) {
-        ws();
-        if (i >= s.size() || depth > 32) return false;
-        const char c = s[i];
-        if (c == '{' || c == '[') {
-            const char close = c == '{' ? '}' : ']';
-            ++i;
-            ws();
-            if (i < s.size() && s[i] == close) return ++i, true;
-            for (;;) {
-                ws();
-                std::string key;
-                if (c == '{') {
-                    if (!str(&key)) return false;
-                    ws();
-                    if (i >= s.size() || s[i++] != ':') return false;
-                }
-                ws();
-                const size_t from = i;
-                if (!value(depth + 1)) return false;
-                if (c == '{' && depth == 0) top[key] = s.substr(from, i - from);
-                ws();
-                if (i < s.size() && s[i] == ',') {
-                    ++i;
-                    continue;
-                }
-                if (i < s.size() && s[i] == close) return ++i, true;
-                return false;
-            }
-        }
-        if (c == '"') return str();
-        for (const char* lit : {"true", "false", "null"})
-            if (s.compare(i, std::strlen(lit), lit) == 0) return i += std::strlen(lit), true;
-        const size_t from = i;
-        while (i < s.size() && (std::isdigit(static_cast<unsigned char>(s[i])) || std::strchr("+-.eE", s[i]))) ++i;
-        return i > from;
-    }
-    bool parse() {
-        if (!value(0)) return false;
-        ws();
-        return i == s.size();
-    }
-};
+// A --json file read with nlohmann (tools/lib/json_io.h); a test failure when it is not JSON.
+tools::Json readJson(const std::string& text) {
+    tools::Json j;
+    std::string err;
+    EXPECT_TRUE(tools::parseJson(text, j, err)) << err << "\n" << text;
+    return j;
+}
 
 std::string slurp(const fs::path& p) {
     std::ifstream f(p);
@@ -187,12 +127,24 @@ TEST(Blame, RanksTheWronglyBlendedDrawFirst) {
     EXPECT_EQ(r.out.find("\n   2 "), std::string::npos) << "only draw 3 differs\n" << r.out;
     // The differing pixels are draw 3's rectangle less nothing (it is drawn last there): 200x140.
     EXPECT_NE(r.out.find("differing pixels: 28000 "), std::string::npos) << r.out;
-    Json j(slurp(t / "blame.json"));
-    ASSERT_TRUE(j.parse()) << slurp(t / "blame.json");
-    EXPECT_EQ(j.top["differing_pixels"], "28000");
-    EXPECT_EQ(j.top["draws"], "5");
-    const std::string& top = j.top["top"];
-    EXPECT_NE(top.find("{\"rank\": 1, \"draw\": 3,"), std::string::npos) << top;
+    const std::string text = slurp(t / "blame.json");
+    const tools::Json j = readJson(text);
+    ASSERT_TRUE(j.is_object()) << text;
+    EXPECT_EQ(j.value("differing_pixels", -1), 28000) << text;
+    EXPECT_EQ(j.value("draws", -1), 5) << text;
+    EXPECT_EQ(j.value("owner_count", -1), 1) << text;
+    ASSERT_TRUE(j.contains("top") && j["top"].is_array() && j["top"].size() == 1u) << text;
+    const tools::Json& first = j["top"][0];
+    EXPECT_EQ(first.value("rank", -1), 1) << text;
+    EXPECT_EQ(first.value("draw", -1), 3) << text;
+    EXPECT_EQ(first.value("pixels", -1), 28000) << text;
+    EXPECT_EQ(first.value("share", -1.0), 1.0) << text;
+    EXPECT_EQ(first.value("prim", ""), "RECTANGLES") << text;
+    EXPECT_EQ(first.value("bbox", tools::Json()), tools::Json({100, 60, 299, 199})) << text;
+    // The layout: one ranked draw per line.
+    EXPECT_NE(text.find("\n  \"top\": [\n    {\"rank\": 1, \"draw\": 3, \"pixels\": 28000, \"share\": 1, "),
+              std::string::npos)
+        << text;
     tools::Image pic;
     std::string err;
     ASSERT_TRUE(tools::readImage((t / "blame.png").string(), pic, err)) << err;
@@ -229,12 +181,17 @@ TEST(Bisect, FindsTheChangedDrawAmongFiveHundred) {
     EXPECT_NE(r.out.find("differing: 144 colour pixels, 0 depth values"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("draw 237: prim RECTANGLES, 2 vertices"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("PRIM count=2"), std::string::npos) << r.out;  // the disassembly
-    Json j(slurp(t / "b.json"));
-    ASSERT_TRUE(j.parse()) << slurp(t / "b.json");
-    EXPECT_EQ(j.top["found"], "true");
-    EXPECT_EQ(j.top["draw"], "237");
-    EXPECT_EQ(j.top["draws"], "500");
-    EXPECT_EQ(j.top["colour_pixels"], "144");
+    const tools::Json j = readJson(slurp(t / "b.json"));
+    ASSERT_TRUE(j.is_object());
+    EXPECT_EQ(j.value("found", false), true);
+    EXPECT_EQ(j.value("draw", -1), 237);
+    EXPECT_EQ(j.value("draws", -1), 500);
+    EXPECT_EQ(j.value("ref_draws", -1), 500);
+    EXPECT_EQ(j.value("colour_pixels", -1), 144);
+    EXPECT_EQ(j.value("reason", ""), "colour");
+    EXPECT_EQ(j.value("prim", ""), "RECTANGLES");
+    ASSERT_TRUE(j.contains("commands") && j["commands"].is_array() && !j["commands"].empty());
+    EXPECT_NE(j["commands"].back().get<std::string>().find("PRIM count=2"), std::string::npos) << j["commands"];
     // Within tolerance 16 the two agree (the blue channel differs by 16).
     r = runCli("bisect " + q(t / "a.ppdmp") + " --backend soft --ref-dump " + q(t / "b.ppdmp") + " --tolerance 16");
     ASSERT_EQ(r.code, 0) << r.out;
@@ -346,9 +303,9 @@ TEST(Bisect, FindsAChangedWordInAFrametest) {
         ASSERT_EQ(r.code, 0) << r.out;
         EXPECT_NE(r.out.find("first difference after draw " + std::to_string(k.draw) + " "), std::string::npos)
             << "changed PRIM of draw " << k.draw << "\n" << r.out;
-        Json j(slurp(t / "f.json"));
-        ASSERT_TRUE(j.parse());
-        EXPECT_EQ(j.top["draw"], std::to_string(k.draw));
+        const tools::Json j = readJson(slurp(t / "f.json"));
+        ASSERT_TRUE(j.is_object());
+        EXPECT_EQ(j.value("draw", u64(0)), k.draw);
         // Both disassemblies are printed; the changed one shows the lower count.
         char want[40];
         std::snprintf(want, sizeof want, "PRIM count=%u", count - fewer);

@@ -181,7 +181,7 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
     return 0;
 }
 
-// compare and merge: tools/lib/batch.cpp (runCompare, runMerge; JSON as tools::jsonString).
+// compare and merge: tools/lib/batch.cpp (runCompare, runMerge; JSON through tools/lib/json_io.h).
 
 int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& opt, int repeat, bool warm) {
     // Per draw: the median replay time over the dump's draws. With the null GL, also the same

@@ -62,12 +62,14 @@ struct OsmesaApi {
     std::string error;  // empty when the library loaded and every entry point resolved
 
     bool resolveAll(void* lib, std::string& missing) {
-        return resolve(lib, "OSMesaCreateContextAttribs", CreateContextAttribs, missing) &
-               resolve(lib, "OSMesaDestroyContext", DestroyContext, missing) &
-               resolve(lib, "OSMesaMakeCurrent", MakeCurrent, missing) &
-               resolve(lib, "OSMesaGetCurrentContext", GetCurrentContext, missing) &
-               resolve(lib, "OSMesaGetProcAddress", GetProcAddress, missing) &
-               resolve(lib, "OSMesaGetColorBuffer", GetColorBuffer, missing);
+        bool ok = true;
+        ok &= resolve(lib, "OSMesaCreateContextAttribs", CreateContextAttribs, missing);
+        ok &= resolve(lib, "OSMesaDestroyContext", DestroyContext, missing);
+        ok &= resolve(lib, "OSMesaMakeCurrent", MakeCurrent, missing);
+        ok &= resolve(lib, "OSMesaGetCurrentContext", GetCurrentContext, missing);
+        ok &= resolve(lib, "OSMesaGetProcAddress", GetProcAddress, missing);
+        ok &= resolve(lib, "OSMesaGetColorBuffer", GetColorBuffer, missing);
+        return ok;
     }
 };
 
@@ -86,15 +88,19 @@ struct EglApi {
     std::string error;
 
     bool resolveAll(void* lib, std::string& missing) {
-        return resolve(lib, "eglGetProcAddress", GetProcAddress, missing) &
-               resolve(lib, "eglGetCurrentContext", GetCurrentContext, missing) &
-               resolve(lib, "eglGetCurrentDisplay", GetCurrentDisplay, missing) &
-               resolve(lib, "eglGetCurrentSurface", GetCurrentSurface, missing) &
-               resolve(lib, "eglInitialize", Initialize, missing) & resolve(lib, "eglTerminate", Terminate, missing) &
-               resolve(lib, "eglBindAPI", BindAPI, missing) & resolve(lib, "eglChooseConfig", ChooseConfig, missing) &
-               resolve(lib, "eglCreateContext", CreateContext, missing) &
-               resolve(lib, "eglDestroyContext", DestroyContext, missing) &
-               resolve(lib, "eglMakeCurrent", MakeCurrent, missing);
+        bool ok = true;
+        ok &= resolve(lib, "eglGetProcAddress", GetProcAddress, missing);
+        ok &= resolve(lib, "eglGetCurrentContext", GetCurrentContext, missing);
+        ok &= resolve(lib, "eglGetCurrentDisplay", GetCurrentDisplay, missing);
+        ok &= resolve(lib, "eglGetCurrentSurface", GetCurrentSurface, missing);
+        ok &= resolve(lib, "eglInitialize", Initialize, missing);
+        ok &= resolve(lib, "eglTerminate", Terminate, missing);
+        ok &= resolve(lib, "eglBindAPI", BindAPI, missing);
+        ok &= resolve(lib, "eglChooseConfig", ChooseConfig, missing);
+        ok &= resolve(lib, "eglCreateContext", CreateContext, missing);
+        ok &= resolve(lib, "eglDestroyContext", DestroyContext, missing);
+        ok &= resolve(lib, "eglMakeCurrent", MakeCurrent, missing);
+        return ok;
     }
 };
 

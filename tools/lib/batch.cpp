@@ -5,14 +5,16 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
+
+#include "tools/lib/json_io.h"
 
 namespace ge::tools {
 
@@ -40,176 +42,31 @@ bool digitsOnly(const std::string& s, size_t maxLen) {
     return !s.empty() && s.size() <= maxLen && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
-// ---- a small JSON reader: enough for the files compareJson writes (and hand-edited ones) ----
+// A JSON member, or null when the object has none.
+const Json* member(const Json& obj, const char* key) {
+    const auto it = obj.find(key);
+    return it == obj.end() ? nullptr : &*it;
+}
 
-struct JValue {
-    enum Kind { Null, Bool, Number, String, Array, Object } kind = Null;
-    bool b = false;
-    double num = 0;
-    std::string str;
-    std::vector<JValue> arr;
-    std::vector<std::pair<std::string, JValue>> obj;
-    const JValue* get(const std::string& key) const {
-        for (const auto& [k, v] : obj)
-            if (k == key) return &v;
-        return nullptr;
-    }
-};
-
-class JsonReader {
-public:
-    explicit JsonReader(const std::string& s) : s_(s) {}
-    bool parse(JValue& v, std::string& err) {
-        if (!value(v, 0)) {
-            err = err_ + " at byte " + std::to_string(pos_);
-            return false;
-        }
-        ws();
-        if (pos_ != s_.size()) {
-            err = "text after the JSON value at byte " + std::to_string(pos_);
-            return false;
-        }
+// A whole number 0..2^53 from a JSON number ("7" or "7.0").
+bool wholeNumber(const Json* v, u64& out) {
+    constexpr u64 kMax = u64(1) << 53;
+    if (!v || !v->is_number()) return false;
+    if (v->is_number_unsigned()) {
+        const u64 n = v->get<u64>();
+        if (n > kMax) return false;
+        out = n;
         return true;
     }
-
-private:
-    void ws() {
-        while (pos_ < s_.size() && (s_[pos_] == ' ' || s_[pos_] == '\n' || s_[pos_] == '\r' || s_[pos_] == '\t')) ++pos_;
-    }
-    bool bad(const char* why) {
-        err_ = why;
-        return false;
-    }
-    bool literal(const char* word) {
-        const size_t n = std::char_traits<char>::length(word);
-        if (s_.compare(pos_, n, word) != 0) return bad("unknown literal");
-        pos_ += n;
+    if (v->is_number_integer()) {
+        const std::int64_t i = v->get<std::int64_t>();
+        if (i < 0 || u64(i) > kMax) return false;
+        out = u64(i);
         return true;
     }
-    bool value(JValue& v, int depth) {
-        if (depth > 64) return bad("nested too deeply");
-        ws();
-        if (pos_ >= s_.size()) return bad("unexpected end");
-        const char c = s_[pos_];
-        if (c == '{') return object(v, depth);
-        if (c == '[') return array(v, depth);
-        if (c == '"') {
-            v.kind = JValue::String;
-            return string(v.str);
-        }
-        if (c == 't') {
-            v.kind = JValue::Bool, v.b = true;
-            return literal("true");
-        }
-        if (c == 'f') {
-            v.kind = JValue::Bool, v.b = false;
-            return literal("false");
-        }
-        if (c == 'n') {
-            v.kind = JValue::Null;
-            return literal("null");
-        }
-        return number(v);
-    }
-    bool number(JValue& v) {
-        const size_t start = pos_;
-        while (pos_ < s_.size() && std::strchr("+-0123456789.eE", s_[pos_]) && s_[pos_] != '\0') ++pos_;
-        if (pos_ == start) return bad("expected a value");
-        const std::string t = s_.substr(start, pos_ - start);
-        const auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v.num);
-        if (ec != std::errc() || p != t.data() + t.size()) return bad("bad number");
-        v.kind = JValue::Number;
-        return true;
-    }
-    static void utf8(std::string& o, u32 cp) {
-        if (cp < 0x80) o += char(cp);
-        else if (cp < 0x800) o += char(0xC0 | cp >> 6), o += char(0x80 | (cp & 0x3F));
-        else o += char(0xE0 | cp >> 12), o += char(0x80 | ((cp >> 6) & 0x3F)), o += char(0x80 | (cp & 0x3F));
-    }
-    bool string(std::string& o) {
-        ++pos_;  // opening quote
-        o.clear();
-        while (true) {
-            if (pos_ >= s_.size()) return bad("unterminated string");
-            const char c = s_[pos_++];
-            if (c == '"') return true;
-            if (c != '\\') {
-                o += c;
-                continue;
-            }
-            if (pos_ >= s_.size()) return bad("unterminated string");
-            const char e = s_[pos_++];
-            switch (e) {
-            case '"': o += '"'; break;
-            case '\\': o += '\\'; break;
-            case '/': o += '/'; break;
-            case 'b': o += '\b'; break;
-            case 'f': o += '\f'; break;
-            case 'n': o += '\n'; break;
-            case 'r': o += '\r'; break;
-            case 't': o += '\t'; break;
-            case 'u': {
-                if (pos_ + 4 > s_.size() || !digitsHex(s_.substr(pos_, 4))) return bad("bad \\u escape");
-                utf8(o, u32(std::stoul(s_.substr(pos_, 4), nullptr, 16)));
-                pos_ += 4;
-                break;
-            }
-            default: return bad("bad escape");
-            }
-        }
-    }
-    static bool digitsHex(const std::string& h) { return h.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos; }
-    bool array(JValue& v, int depth) {
-        v.kind = JValue::Array;
-        ++pos_;
-        ws();
-        if (pos_ < s_.size() && s_[pos_] == ']') return ++pos_, true;
-        while (true) {
-            v.arr.emplace_back();
-            if (!value(v.arr.back(), depth + 1)) return false;
-            ws();
-            if (pos_ < s_.size() && s_[pos_] == ',') {
-                ++pos_;
-                continue;
-            }
-            if (pos_ < s_.size() && s_[pos_] == ']') return ++pos_, true;
-            return bad("expected , or ]");
-        }
-    }
-    bool object(JValue& v, int depth) {
-        v.kind = JValue::Object;
-        ++pos_;
-        ws();
-        if (pos_ < s_.size() && s_[pos_] == '}') return ++pos_, true;
-        while (true) {
-            ws();
-            if (pos_ >= s_.size() || s_[pos_] != '"') return bad("expected a key");
-            std::string key;
-            if (!string(key)) return false;
-            ws();
-            if (pos_ >= s_.size() || s_[pos_] != ':') return bad("expected :");
-            ++pos_;
-            v.obj.emplace_back(key, JValue());
-            if (!value(v.obj.back().second, depth + 1)) return false;
-            ws();
-            if (pos_ < s_.size() && s_[pos_] == ',') {
-                ++pos_;
-                continue;
-            }
-            if (pos_ < s_.size() && s_[pos_] == '}') return ++pos_, true;
-            return bad("expected , or }");
-        }
-    }
-    const std::string& s_;
-    size_t pos_ = 0;
-    std::string err_;
-};
-
-// A whole number 0..2^53 from a JSON number.
-bool wholeNumber(const JValue* v, u64& out) {
-    if (!v || v->kind != JValue::Number || v->num < 0 || v->num > 9007199254740992.0 || v->num != std::floor(v->num))
-        return false;
-    out = u64(v->num);
+    const double d = v->get<double>();
+    if (!(d >= 0) || d > double(kMax) || d != std::floor(d)) return false;
+    out = u64(d);
     return true;
 }
 
@@ -276,114 +133,106 @@ std::string summaryLine(const CompareSummary& s, bool times) {
     return buf;
 }
 
-std::string jsonNumber(double v) {
-    if (std::isinf(v)) v = v > 0 ? 999.0 : -999.0;
-    if (std::isnan(v)) return "null";
-    char buf[64];
-    const auto [p, ec] = std::to_chars(buf, buf + sizeof buf, v);
-    return ec == std::errc() ? std::string(buf, p) : "0";
-}
-
-std::string jsonString(const std::string& s) {
-    std::string o = "\"";
-    for (char c : s) {
-        const unsigned char u = static_cast<unsigned char>(c);
-        if (c == '"' || c == '\\') o += '\\', o += c;
-        else if (u < 0x20) {
-            char e[8];
-            std::snprintf(e, sizeof e, "\\u%04x", u);
-            o += e;
-        } else o += c;
-    }
-    return o + "\"";
-}
-
 std::string compareJson(const CompareReport& r) {
     const CompareSummary s = summarize(r.rows);
-    std::string j = "{\n  \"backend\": " + jsonString(r.backend) + ",\n";
-    if (r.backend == "gl") j += "  \"gl_mode\": " + jsonString(r.glMode) + ", \"scale\": " + std::to_string(r.scale) + ",\n";
-    if (!r.refBackend.empty()) j += "  \"ref_backend\": " + jsonString(r.refBackend) + ",\n";
-    if (r.sharded)
-        j += "  \"shard\": {\"index\": " + std::to_string(r.shard.index) + ", \"count\": " + std::to_string(r.shard.count) +
-             ", \"dumps\": " + std::to_string(r.dumps) + "},\n";
-    j += "  \"results\": [\n";
-    for (size_t i = 0; i < r.rows.size(); ++i) {
-        const CompareRow& row = r.rows[i];
-        j += "    {\"index\": " + std::to_string(row.index) + ", \"name\": " + jsonString(row.name);
-        if (!row.dump.empty()) j += ", \"dump\": " + jsonString(row.dump);
-        if (!row.reference.empty()) j += ", \"reference\": " + jsonString(row.reference);
-        if (row.error.empty()) {
-            j += ", \"mse\": " + jsonNumber(row.mse) + ", \"psnr\": " + jsonNumber(row.psnr);
-            if (r.times) j += ", \"seconds\": " + jsonNumber(row.seconds);
-        } else {
-            j += ", \"error\": " + jsonString(row.error);
-        }
-        j += i + 1 < r.rows.size() ? "},\n" : "}\n";
+    Json j;
+    j["backend"] = r.backend;
+    if (r.backend == "gl") {
+        j["gl_mode"] = r.glMode;
+        j["scale"] = r.scale;
     }
-    j += "  ],\n  \"median_mse\": " + jsonNumber(s.medianMse) + ",\n";
-    if (r.times) j += "  \"median_seconds\": " + jsonNumber(s.medianSeconds) + ",\n";
-    j += "  \"within_0_1\": " + std::to_string(s.within01) + ",\n  \"within_10\": " + std::to_string(s.within10) + "\n}\n";
-    return j;
+    if (!r.refBackend.empty()) j["ref_backend"] = r.refBackend;
+    if (r.sharded) {
+        Json& shard = j["shard"];
+        shard["index"] = r.shard.index;
+        shard["count"] = r.shard.count;
+        shard["dumps"] = r.dumps;
+    }
+    Json& results = j["results"] = Json::array();
+    for (const CompareRow& row : r.rows) {
+        Json e;
+        e["index"] = row.index;
+        e["name"] = row.name;
+        if (!row.dump.empty()) e["dump"] = row.dump;
+        if (!row.reference.empty()) e["reference"] = row.reference;
+        if (row.error.empty()) {
+            e["mse"] = numberValue(row.mse);
+            e["psnr"] = numberValue(row.psnr);
+            if (r.times) e["seconds"] = numberValue(row.seconds);
+        } else {
+            e["error"] = row.error;
+        }
+        results.push_back(std::move(e));
+    }
+    j["median_mse"] = numberValue(s.medianMse);
+    if (r.times) j["median_seconds"] = numberValue(s.medianSeconds);
+    j["within_0_1"] = s.within01;
+    j["within_10"] = s.within10;
+    JsonLayout layout;
+    layout.rowArrays = layout.emptyRowsOnTwoLines = {"results"};
+    layout.sameLine = {"scale"};
+    return jsonDocument(j, layout);
 }
 
 bool parseCompareJson(const std::string& text, CompareReport& out, std::string& err) {
-    JValue root;
-    if (!JsonReader(text).parse(root, err)) return false;
-    if (root.kind != JValue::Object) return err = "not a JSON object", false;
+    Json root;
+    if (!parseJson(text, root, err)) return false;
+    if (!root.is_object()) return err = "not a JSON object", false;
     out = CompareReport();
-    const JValue* backend = root.get("backend");
-    const JValue* results = root.get("results");
-    if (!backend || backend->kind != JValue::String) return err = "no \"backend\" string", false;
-    if (!results || results->kind != JValue::Array) return err = "no \"results\" array", false;
-    out.backend = backend->str;
-    out.times = root.get("median_seconds") != nullptr;
-    if (const JValue* m = root.get("gl_mode")) {
-        if (m->kind != JValue::String) return err = "\"gl_mode\" is not a string", false;
-        out.glMode = m->str;
+    const Json* backend = member(root, "backend");
+    const Json* results = member(root, "results");
+    if (!backend || !backend->is_string()) return err = "no \"backend\" string", false;
+    if (!results || !results->is_array()) return err = "no \"results\" array", false;
+    out.backend = backend->get<std::string>();
+    out.times = member(root, "median_seconds") != nullptr;
+    if (const Json* m = member(root, "gl_mode")) {
+        if (!m->is_string()) return err = "\"gl_mode\" is not a string", false;
+        out.glMode = m->get<std::string>();
     }
-    if (const JValue* sc = root.get("scale")) {
+    if (const Json* sc = member(root, "scale")) {
         u64 v = 0;
         if (!wholeNumber(sc, v) || v < 1 || v > 8) return err = "\"scale\" is not a whole number from 1 to 8", false;
         out.scale = int(v);
     }
-    if (const JValue* rb = root.get("ref_backend")) {
-        if (rb->kind != JValue::String) return err = "\"ref_backend\" is not a string", false;
-        out.refBackend = rb->str;
+    if (const Json* rb = member(root, "ref_backend")) {
+        if (!rb->is_string()) return err = "\"ref_backend\" is not a string", false;
+        out.refBackend = rb->get<std::string>();
     }
-    for (size_t i = 0; i < results->arr.size(); ++i) {
-        const JValue& e = results->arr[i];
+    for (size_t i = 0; i < results->size(); ++i) {
+        const Json& e = (*results)[i];
         const std::string where = "result " + std::to_string(i + 1);
-        if (e.kind != JValue::Object) return err = where + " is not an object", false;
+        if (!e.is_object()) return err = where + " is not an object", false;
         CompareRow row;
-        const JValue* name = e.get("name");
-        if (!wholeNumber(e.get("index"), row.index) || row.index == 0)
+        const Json* name = member(e, "name");
+        if (!wholeNumber(member(e, "index"), row.index) || row.index == 0)
             return err = where + ": no \"index\" (files from ge2gl compare before sharding carry none)", false;
-        if (!name || name->kind != JValue::String) return err = where + ": no \"name\"", false;
-        row.name = name->str;
+        if (!name || !name->is_string()) return err = where + ": no \"name\"", false;
+        row.name = name->get<std::string>();
         for (auto [key, field] : {std::pair{"dump", &row.dump}, std::pair{"reference", &row.reference}})
-            if (const JValue* v = e.get(key)) {
-                if (v->kind != JValue::String) return err = where + ": \"" + key + "\" is not a string", false;
-                *field = v->str;
+            if (const Json* v = member(e, key)) {
+                if (!v->is_string()) return err = where + ": \"" + key + "\" is not a string", false;
+                *field = v->get<std::string>();
             }
-        if (const JValue* er = e.get("error")) {
-            if (er->kind != JValue::String) return err = where + ": \"error\" is not a string", false;
-            row.error = er->str.empty() ? "(empty error)" : er->str;
+        if (const Json* er = member(e, "error")) {
+            if (!er->is_string()) return err = where + ": \"error\" is not a string", false;
+            row.error = er->get<std::string>();
+            if (row.error.empty()) row.error = "(empty error)";
         } else {
-            const JValue *mse = e.get("mse"), *psnr = e.get("psnr"), *sec = e.get("seconds");
-            if (!mse || mse->kind != JValue::Number || !psnr || psnr->kind != JValue::Number)
+            const Json *mse = member(e, "mse"), *psnr = member(e, "psnr"), *sec = member(e, "seconds");
+            if (!mse || !mse->is_number() || !psnr || !psnr->is_number())
                 return err = where + ": needs \"mse\" and \"psnr\" numbers, or an \"error\"", false;
             if (out.times != (sec != nullptr))
                 return err = where + (out.times ? ": no \"seconds\" although the file has \"median_seconds\""
                                                 : ": \"seconds\" although the file has no \"median_seconds\""),
                        false;
-            if (sec && sec->kind != JValue::Number) return err = where + ": \"seconds\" is not a number", false;
-            row.mse = mse->num, row.psnr = psnr->num, row.seconds = sec ? sec->num : 0;
+            if (sec && !sec->is_number()) return err = where + ": \"seconds\" is not a number", false;
+            row.mse = mse->get<double>(), row.psnr = psnr->get<double>(), row.seconds = sec ? sec->get<double>() : 0;
         }
         out.rows.push_back(row);
     }
-    if (const JValue* sh = root.get("shard")) {
-        if (sh->kind != JValue::Object || !wholeNumber(sh->get("index"), out.shard.index) ||
-            !wholeNumber(sh->get("count"), out.shard.count) || !wholeNumber(sh->get("dumps"), out.dumps) ||
+    if (const Json* sh = member(root, "shard")) {
+        if (!sh->is_object() || !wholeNumber(member(*sh, "index"), out.shard.index) ||
+            !wholeNumber(member(*sh, "count"), out.shard.count) || !wholeNumber(member(*sh, "dumps"), out.dumps) ||
             out.shard.index < 1 || out.shard.index > out.shard.count)
             return err = "bad \"shard\" object (needs index, count, dumps with 1 <= index <= count)", false;
         out.sharded = true;

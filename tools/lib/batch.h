@@ -25,8 +25,10 @@
 //     "within_0_1": 0,
 //     "within_10": 1
 //   }
-// Numbers are written in the shortest form that reads back as the same double, so `merge` can
-// recompute the summary exactly; a PSNR of infinity (identical pictures) is written as 999.
+// Written and read with nlohmann::json in the layout above (tools/lib/json_io.h). Numbers are
+// written in a form that reads back as the same double (whole values without ".0"), so `merge`
+// can recompute the summary exactly and writes what it read; a PSNR of infinity (identical
+// pictures) is written as 999.
 // "seconds" and "median_seconds" are left out with --json-no-times: the rest of the file is then
 // the same from run to run, and merged shards are byte-identical to one unsharded run.
 // "dump" is the dump's path and "reference" the reference picture's (with --ref-dir), both as
@@ -85,7 +87,8 @@ CompareSummary summarize(const std::vector<CompareRow>& rows);
 std::string summaryLine(const CompareSummary& s, bool times = true);
 
 std::string compareJson(const CompareReport& r);
-// Reads what compareJson writes (any whitespace, any key order). `err` names what is wrong.
+// Reads what compareJson writes (any whitespace, any key order). `err` names what is wrong: a
+// missing or mistyped member, or nlohmann's parse error with its line and column.
 bool parseCompareJson(const std::string& text, CompareReport& out, std::string& err);
 
 // Joins shard reports (files[i] names reports[i] in messages) into the report an unsharded run
@@ -93,10 +96,6 @@ bool parseCompareJson(const std::string& text, CompareReport& out, std::string& 
 // not), that every shard 1..n is there exactly once and that each holds exactly its dumps.
 bool mergeReports(const std::vector<CompareReport>& reports, const std::vector<std::string>& files, CompareReport& out,
                   std::string& err);
-
-// The shortest decimal form of v that reads back as v ("0.1", "999", "1.5e-05").
-std::string jsonNumber(double v);
-std::string jsonString(const std::string& s);  // quoted and escaped
 
 // A progress line on a terminal: "  7/20 dumps, 3.1/s, ETA 0:04", rewritten in place with \r.
 std::string progressText(size_t done, size_t total, double elapsedSeconds);

@@ -15,6 +15,7 @@
 #include "hle/disasm.h"
 #include "hle/pixel_format.h"
 #include "tools/lib/draw_hook.h"
+#include "tools/lib/json_io.h"
 
 namespace ge::tools {
 
@@ -365,33 +366,40 @@ int runBisectCommand(const std::string& dumpPath, const RenderOptions& ro, const
         if (!r.commandsB.empty() && r.commandsB != r.commandsA) printCmds(r.commandsB, truncB, nameB);
     }
     if (!bo.jsonPath.empty()) {
-        std::ofstream j(bo.jsonPath);
-        j << "{\n  \"dump\": \"" << jsonEscapeString(dumpPath) << "\",\n  \"reference\": \"" << jsonEscapeString(nameB)
-          << "\",\n  \"backend\": \"" << ro.backend << "\",\n  \"ref_backend\": \"" << roB.backend
-          << "\",\n  \"compared\": \"" << jsonEscapeString(compared) << "\",\n  \"tolerance\": " << bo.tolerance
-          << ",\n  \"found\": " << (r.found ? "true" : "false") << ",\n  \"draw\": " << r.draw
-          << ",\n  \"draws\": " << r.drawsA << ",\n  \"ref_draws\": " << r.drawsB;
+        Json j;
+        j["dump"] = dumpPath;
+        j["reference"] = nameB;
+        j["backend"] = ro.backend;
+        j["ref_backend"] = roB.backend;
+        j["compared"] = compared;
+        j["tolerance"] = bo.tolerance;
+        j["found"] = r.found;
+        j["draw"] = r.draw;
+        j["draws"] = r.drawsA;
+        j["ref_draws"] = r.drawsB;
         if (r.found) {
-            j << ",\n  \"reason\": \"" << r.reason << "\",\n  \"colour_pixels\": " << r.colourPixels
-              << ",\n  \"depth_pixels\": " << r.depthPixels << ",\n  \"bbox\": [" << r.x0 << ", " << r.y0 << ", " << r.x1
-              << ", " << r.y1 << "],\n  \"vram_bytes\": " << r.vramBytes;
+            j["reason"] = r.reason;
+            j["colour_pixels"] = r.colourPixels;
+            j["depth_pixels"] = r.depthPixels;
+            j["bbox"] = {r.x0, r.y0, r.x1, r.y1};
+            j["vram_bytes"] = r.vramBytes;
             if (r.infoA.draw) {
-                j << ",\n  \"kind\": \"" << r.infoA.kind << "\",\n  \"vertices\": " << r.infoA.vertices;
-                if (r.infoA.kind != "bezier" && r.infoA.kind != "spline")
-                    j << ",\n  \"prim\": \"" << primTypeName(r.infoA.prim) << "\"";
-                j << ",\n  \"state\": \"" << jsonEscapeString(r.infoA.state) << "\"";
+                j["kind"] = r.infoA.kind;
+                j["vertices"] = r.infoA.vertices;
+                if (r.infoA.kind != "bezier" && r.infoA.kind != "spline") j["prim"] = primTypeName(r.infoA.prim);
+                j["state"] = r.infoA.state;
             }
-            if (r.infoB.draw) j << ",\n  \"ref_state\": \"" << jsonEscapeString(r.infoB.state) << "\"";
-            j << ",\n  \"commands\": [";
-            for (size_t k = 0; k < r.commandsA.size(); ++k) {
+            if (r.infoB.draw) j["ref_state"] = r.infoB.state;
+            Json& commands = j["commands"] = Json::array();
+            for (u32 w : r.commandsA) {
                 char hex[12];
-                std::snprintf(hex, sizeof hex, "%08x", r.commandsA[k]);
-                j << (k ? ", " : "") << "\"" << hex << " " << jsonEscapeString(disassemble(r.commandsA[k])) << "\"";
+                std::snprintf(hex, sizeof hex, "%08x ", w);
+                commands.push_back(hex + disassemble(w));
             }
-            j << "]";
         }
-        j << "\n}\n";
-        if (!j) return fail("cannot write " + bo.jsonPath);
+        std::ofstream f(bo.jsonPath);
+        f << jsonDocument(j);
+        if (!f) return fail("cannot write " + bo.jsonPath);
     }
     std::fflush(stdout);
     return 0;

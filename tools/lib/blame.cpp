@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "tools/lib/draw_hook.h"
+#include "tools/lib/json_io.h"
 
 namespace ge::tools {
 
@@ -127,16 +128,6 @@ std::string drawDescription(const DrawInfo& d) {
     if (d.draw == 0) return "not a draw (VRAM as loaded, transfers, CPU copies)";
     if (d.kind == "bezier" || d.kind == "spline") return d.kind + fmtStr(", %u control points", d.vertices);
     return d.kind + " " + primTypeName(d.prim) + fmtStr(", %u vertices", d.vertices);
-}
-
-std::string jsonEscapeString(const std::string& s) {
-    std::string o;
-    for (char c : s) {
-        if (c == '"' || c == '\\') o += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) continue;
-        o += c;
-    }
-    return o;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -385,25 +376,42 @@ int runBlameCommand(const std::string& dumpPath, const RenderOptions& ro, const 
     }
     if (!bo.picturePath.empty() && !writePng(bo.picturePath, blamePicture(r, top), err)) return fail(err);
     if (!bo.jsonPath.empty()) {
-        std::ofstream j(bo.jsonPath);
-        j << "{\n  \"dump\": \"" << jsonEscapeString(dumpPath) << "\",\n  \"backend\": \"" << ro.backend
-          << "\",\n  \"reference\": \"" << jsonEscapeString(refName) << "\",\n  \"display\": {\"addr\": " << r.displayAddr
-          << ", \"stride\": " << r.displayStride << ", \"format\": \"" << bufferFormatName(r.displayFormat)
-          << "\"},\n  \"draws\": " << r.draws << ",\n  \"differing_pixels\": " << r.differing << ",\n  \"mse\": " << r.mse
-          << ",\n  \"owner_count\": " << r.owners.size() << ",\n  \"top\": [";
+        // Measurements with 6 significant digits, as this file has always had them.
+        Json j;
+        j["dump"] = dumpPath;
+        j["backend"] = ro.backend;
+        j["reference"] = refName;
+        Json& display = j["display"];
+        display["addr"] = r.displayAddr;
+        display["stride"] = r.displayStride;
+        display["format"] = bufferFormatName(r.displayFormat);
+        j["draws"] = r.draws;
+        j["differing_pixels"] = r.differing;
+        j["mse"] = number6Value(r.mse);
+        j["owner_count"] = r.owners.size();
+        Json& ranked = j["top"] = Json::array();
         for (int i = 0; i < int(r.owners.size()) && i < top; ++i) {
             const BlameOwner& o = r.owners[size_t(i)];
-            j << (i ? ",\n" : "\n") << "    {\"rank\": " << i + 1 << ", \"draw\": " << o.info.draw << ", \"pixels\": " << o.pixels
-              << ", \"share\": " << o.share << ", \"mse\": " << o.mse << ", \"bbox\": [" << o.x0 << ", " << o.y0 << ", "
-              << o.x1 << ", " << o.y1 << "], \"kind\": \"" << (o.info.draw ? o.info.kind : "none") << "\"";
+            Json e;
+            e["rank"] = i + 1;
+            e["draw"] = o.info.draw;
+            e["pixels"] = o.pixels;
+            e["share"] = number6Value(o.share);
+            e["mse"] = number6Value(o.mse);
+            e["bbox"] = {o.x0, o.y0, o.x1, o.y1};
+            e["kind"] = o.info.draw ? o.info.kind : "none";
             if (o.info.draw) {
-                if (o.info.kind != "bezier" && o.info.kind != "spline") j << ", \"prim\": \"" << primTypeName(o.info.prim) << "\"";
-                j << ", \"vertices\": " << o.info.vertices << ", \"state\": \"" << jsonEscapeString(o.info.state) << "\"";
+                if (o.info.kind != "bezier" && o.info.kind != "spline") e["prim"] = primTypeName(o.info.prim);
+                e["vertices"] = o.info.vertices;
+                e["state"] = o.info.state;
             }
-            j << "}";
+            ranked.push_back(std::move(e));
         }
-        j << (r.owners.empty() ? "]\n}\n" : "\n  ]\n}\n");
-        if (!j) return fail("cannot write " + bo.jsonPath);
+        JsonLayout layout;
+        layout.rowArrays = {"top"};
+        std::ofstream f(bo.jsonPath);
+        f << jsonDocument(j, layout);
+        if (!f) return fail("cannot write " + bo.jsonPath);
     }
     std::fflush(stdout);
     return 0;

@@ -71,7 +71,4 @@ Image blamePicture(const BlameResult& r, int top);
 // The whole subcommand: prints the ranking, writes -o and --json. Returns the exit code.
 int runBlameCommand(const std::string& dumpPath, const RenderOptions& ro, const BlameOptions& bo);
 
-// JSON string body (quotes and backslashes escaped, control characters dropped).
-std::string jsonEscapeString(const std::string& s);
-
 }  // namespace ge::tools

@@ -17,6 +17,7 @@
 #include "hle/list_builder.h"
 #include "hle/memory.h"
 #include "tools/lib/blame.h"
+#include "tools/lib/json_io.h"
 
 namespace ge::tools {
 
@@ -626,25 +627,36 @@ int runFuzzCommand(const FuzzOptions& o) {
                 (unsigned long long)(o.seed + (o.count ? o.count - 1 : 0)), (unsigned long long)s.cases,
                 (unsigned long long)s.divergences, (unsigned long long)s.errors, s.seconds, rate);
     if (!o.jsonPath.empty()) {
-        std::ofstream j(o.jsonPath);
-        j << "{\n  \"backend\": \"" << jsonEscapeString(o.backend) << "\",\n  \"refBackend\": \""
-          << jsonEscapeString(o.refBackend) << "\",\n  \"seed\": " << o.seed << ",\n  \"cases\": " << s.cases
-          << ",\n  \"divergences\": " << s.divergences << ",\n  \"errors\": " << s.errors
-          << ",\n  \"seconds\": " << s.seconds << ",\n  \"casesPerSecond\": " << rate << ",\n  \"failingSeeds\": [";
-        for (size_t i = 0; i < s.failures.size(); ++i) j << (i ? ", " : "") << s.failures[i].seed;
-        j << "],\n  \"failures\": [";
-        for (size_t i = 0; i < s.failures.size(); ++i) {
-            const auto& f = s.failures[i];
-            j << (i ? ",\n    " : "\n    ") << "{\"seed\": " << f.seed << ", \"cause\": \"" << jsonEscapeString(f.cause)
-              << "\", \"path\": \"" << jsonEscapeString(f.path) << "\", \"weightBefore\": " << f.weightBefore
-              << ", \"weightAfter\": " << f.weightAfter << ", \"bytesBefore\": " << f.bytesBefore
-              << ", \"bytesAfter\": " << f.bytesAfter << "}";
+        Json j;
+        j["backend"] = o.backend;
+        j["refBackend"] = o.refBackend;
+        j["seed"] = o.seed;
+        j["cases"] = s.cases;
+        j["divergences"] = s.divergences;
+        j["errors"] = s.errors;
+        // Times with 6 significant digits, as this file has always had them.
+        j["seconds"] = number6Value(s.seconds);
+        j["casesPerSecond"] = number6Value(rate);
+        Json& seeds = j["failingSeeds"] = Json::array();
+        for (const auto& f : s.failures) seeds.push_back(f.seed);
+        Json& failures = j["failures"] = Json::array();
+        for (const auto& f : s.failures) {
+            Json e;
+            e["seed"] = f.seed;
+            e["cause"] = f.cause;
+            e["path"] = f.path;
+            e["weightBefore"] = f.weightBefore;
+            e["weightAfter"] = f.weightAfter;
+            e["bytesBefore"] = f.bytesBefore;
+            e["bytesAfter"] = f.bytesAfter;
+            failures.push_back(std::move(e));
         }
-        j << (s.failures.empty() ? "" : "\n  ") << "],\n  \"errorMessages\": [";
-        for (size_t i = 0; i < s.errorMessages.size(); ++i)
-            j << (i ? ", " : "") << "\"" << jsonEscapeString(s.errorMessages[i]) << "\"";
-        j << "]\n}\n";
-        if (!j) {
+        j["errorMessages"] = s.errorMessages;
+        JsonLayout layout;
+        layout.rowArrays = {"failures"};
+        std::ofstream f(o.jsonPath);
+        f << jsonDocument(j, layout);
+        if (!f) {
             std::fprintf(stderr, "ge2gl: fuzz: cannot write %s\n", o.jsonPath.c_str());
             return 2;
         }

@@ -16,6 +16,7 @@
 #include "tools/lib/batch.h"
 #include "tools/lib/blame.h"
 #include "tools/lib/image.h"
+#include "tools/lib/json_io.h"
 
 namespace fs = std::filesystem;
 
@@ -250,7 +251,7 @@ std::vector<Change> compareRuns(const CompareReport& before, const CompareReport
     return out;
 }
 
-std::string mseCell(double v) { return v < 0 ? "<td class=\"n\" data-v=\"\">–</td>" : "<td class=\"n\" data-v=\"" + jsonNumber(v) + "\">" + fmt("%.4f", v) + "</td>"; }
+std::string mseCell(double v) { return v < 0 ? "<td class=\"n\" data-v=\"\">–</td>" : "<td class=\"n\" data-v=\"" + numberText(v) + "\">" + fmt("%.4f", v) + "</td>"; }
 
 void writeComparison(std::ostringstream& h, const CompareReport& before, const CompareReport& after) {
     const std::vector<Change> changes = compareRuns(before, after);
@@ -276,7 +277,7 @@ void writeComparison(std::ostringstream& h, const CompareReport& before, const C
         h << "<tr data-verdict=\"" << c.verdict << "\"><td data-v=\"" << html(c.name) << "\">" << html(c.name) << "</td>"
           << mseCell(c.before) << mseCell(c.after);
         if (c.before >= 0 && c.after >= 0)
-            h << "<td class=\"n\" data-v=\"" << jsonNumber(c.after - c.before) << "\">" << fmt("%+.4f", c.after - c.before)
+            h << "<td class=\"n\" data-v=\"" << numberText(c.after - c.before) << "\">" << fmt("%+.4f", c.after - c.before)
               << "</td>";
         else h << "<td class=\"n\" data-v=\"\">–</td>";
         h << "<td class=\"" << c.verdict << "\">" << c.verdict << "</td></tr>\n";
@@ -403,11 +404,11 @@ int runReport(const ReportArgs& a) {
         h << "<tr data-index=\"" << r.index << "\"><td class=\"n\" data-v=\"" << r.index << "\">" << r.index << "</td><td data-v=\""
           << html(r.name) << "\"><a href=\"#d" << r.index << "\">" << html(r.name) << "</a></td>";
         if (ok)
-            h << mseCell(r.mse) << "<td class=\"n\" data-v=\"" << jsonNumber(r.psnr) << "\">"
+            h << mseCell(r.mse) << "<td class=\"n\" data-v=\"" << numberText(r.psnr) << "\">"
               << (r.psnr >= 999 ? std::string("∞") : fmt("%.2f", r.psnr)) << "</td>";
         else h << "<td class=\"n err\" data-v=\"\">error</td><td class=\"n\" data-v=\"\">–</td>";
         if (run.times)
-            h << (ok ? "<td class=\"n\" data-v=\"" + jsonNumber(r.seconds) + "\">" + fmt("%.3f", r.seconds) + "</td>"
+            h << (ok ? "<td class=\"n\" data-v=\"" + numberText(r.seconds) + "\">" + fmt("%.3f", r.seconds) + "</td>"
                      : std::string("<td class=\"n\" data-v=\"\">–</td>"));
         if (withBefore) {
             auto it = old.find(r.name);
@@ -415,7 +416,7 @@ int runReport(const ReportArgs& a) {
             h << mseCell(b);
             if (b >= 0 && ok) {
                 const char* cls = !mseChanged(b, r.mse) ? "" : r.mse < b ? " better" : " worse";
-                h << "<td class=\"n" << cls << "\" data-v=\"" << jsonNumber(r.mse - b) << "\">" << fmt("%+.4f", r.mse - b) << "</td>";
+                h << "<td class=\"n" << cls << "\" data-v=\"" << numberText(r.mse - b) << "\">" << fmt("%+.4f", r.mse - b) << "</td>";
             } else {
                 h << "<td class=\"n\" data-v=\"\">–</td>";
             }
