@@ -13,7 +13,8 @@
 # `build-fuzz/fuzz/fuzz_NAME FILE` to replay it).
 # Environment: GE2GL_FUZZ_BUILD (build dir, default build-fuzz), GE2GL_FUZZ_JOBS (ninja -j,
 # default: all cores), GE2GL_FUZZ_ARGS (extra libFuzzer flags, e.g. "-runs=1000000"),
-# GE2GL_FUZZ_PARALLEL (harnesses run at once, default 1: one after the other; each takes a core).
+# GE2GL_FUZZ_PARALLEL (harnesses run at once, default 1: one after the other; each takes a core),
+# GE2GL_FUZZ_TESTS=ON (build the test suite too), GE2GL_FUZZ_BUILD_ONLY=1 (build, do not run).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 secs=${1:-60}
@@ -32,10 +33,18 @@ parallel=${GE2GL_FUZZ_PARALLEL:-1}
 [[ "$parallel" =~ ^[1-9][0-9]*$ ]] || { echo "fuzz.sh: GE2GL_FUZZ_PARALLEL must be a positive count" >&2; exit 2; }
 
 echo "== fuzz: building the harnesses in $build =="
+# GE2GL_FUZZ_TESTS=ON builds the test suite in the same configuration (scripts/test.sh runs it
+# there under the same sanitizers: one clang build serves both).
+tests=${GE2GL_FUZZ_TESTS:-OFF}
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DGE2GL_FUZZ=ON \
-  -DGE2GL_BUILD_TESTS=OFF -DGE2GL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DGE2GL_BUILD_TESTS="$tests" -DGE2GL_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" >/dev/null
-nice -n 10 ninja -C "$build" -j"$jobs" ge2gl_fuzzers >/dev/null
+if [ "$tests" = ON ]; then
+  nice -n 10 ninja -C "$build" -j"$jobs" >/dev/null
+else
+  nice -n 10 ninja -C "$build" -j"$jobs" ge2gl_fuzzers >/dev/null
+fi
+[ "${GE2GL_FUZZ_BUILD_ONLY:-0}" = 1 ] && exit 0
 
 # Seeds: remade when a dump or the seed maker is newer than the stamp.
 seeds=$build/seeds

@@ -1,30 +1,52 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Set up, build and run the whole test suite, then the same tests under ASan+UBSan, then the
-# software model's tests and every dump with 4 band threads under ThreadSanitizer, then every
-# libFuzzer harness for 30 s (scripts/fuzz.sh; fails on any finding).
-# GE2GL_SKIP_SANITIZE=1 skips the sanitizer passes and GE2GL_SKIP_FUZZ=1 the fuzzing (quick local runs).
+# The project's test command, in two tiers.
+#
+#   bash scripts/test.sh --quick   before each commit: set up, Release build, every test but the
+#                                  slow whole-frametest runs (labels accuracy and conformance)
+#   bash scripts/test.sh           in full (CI, .ci/run): the Release build's whole suite and the
+#                                  scripts' checks; then the same tests under ASan+UBSan (GCC,
+#                                  Debug), the software model with 4 band threads under
+#                                  ThreadSanitizer, and every libFuzzer harness for 30 s
+#                                  (scripts/fuzz.sh, clang; fails on any finding).
+#
+# GE2GL_SKIP_SANITIZE=1 skips the sanitizer stages, GE2GL_SKIP_FUZZ=1 the fuzzing. Each stage
+# prints the time it started at.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+quick=0
+case "${1:-}" in
+  --quick) quick=1 ;;
+  "") ;;
+  *) sed -n '3,14p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2 ;;
+esac
+stage() { echo "== $* ($(date +%T), $((SECONDS / 60)) min $((SECONDS % 60)) s in) =="; }
 bash "$root/scripts/setup.sh"
 jobs=$(nproc 2>/dev/null || echo 2)
+stage "Release build"
 bash "$root/scripts/build.sh" "$root/build"
-echo "== tests (Release) =="
 # setup.sh installed Chromium: in CI the report's browser test must run, not skip.
 [ "${CI:-}" = true ] && export GE2GL_REQUIRE_CHROMIUM=1
+if [ "$quick" = 1 ]; then
+  stage "tests (Release), without the accuracy and conformance runs"
+  (cd "$root/build" && ctest --output-on-failure -j"$jobs" --timeout 600 -LE 'accuracy|conformance')
+  stage "quick tier passed"
+  exit 0
+fi
+stage "tests (Release)"
 (cd "$root/build" && ctest --output-on-failure -j"$jobs" --timeout 1200)
 if [ -d "$root/../shared/frametests/dumps" ]; then
-  echo "== README: the GNU parallel recipe as written (scripts/check_parallel_recipe.sh) =="
+  stage "README: the GNU parallel recipe as written (scripts/check_parallel_recipe.sh)"
   bash "$root/scripts/check_parallel_recipe.sh"
 fi
-echo "== scripts/bench_vs_ppsspp.sh against a stand-in PPSSPP (scripts/check_bench_vs_ppsspp.sh) =="
+stage "scripts/bench_vs_ppsspp.sh against a stand-in PPSSPP (scripts/check_bench_vs_ppsspp.sh)"
 bash "$root/scripts/check_bench_vs_ppsspp.sh" "$root/build" >/dev/null
-echo "== hostile dumps: clean exit within 10 s and 1 GiB, both backends =="
+stage "hostile dumps: clean exit within 10 s and 1 GiB, both backends"
 bash "$root/scripts/check_dumps.sh" "$root/build"
-echo "== install: CMake package, pkg-config, add_subdirectory (scripts/check_install.sh) =="
+stage "install: CMake package, pkg-config, add_subdirectory (scripts/check_install.sh)"
 bash "$root/scripts/check_install.sh" "$root/build"
 if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
-  echo "== tests (ASan + UBSan) =="
+  stage "tests (GCC ASan + UBSan, Debug)"
   bash "$root/scripts/build.sh" "$root/build-asan" -DCMAKE_BUILD_TYPE=Debug -DGE2GL_SANITIZE=ON -DGE2GL_BUILD_BENCH=OFF
   export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
   # Accuracy runs over all frametests are slow under the sanitizers and add nothing there.
@@ -58,7 +80,7 @@ if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
     ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 asan_ctest --rerun-failed -j1 && asan_ok=1
   fi
   [ "$asan_ok" = 1 ] || { echo "ASan stage failed" >&2; exit 1; }
-  echo "== software model under ThreadSanitizer (4 band threads) =="
+  stage "software model under ThreadSanitizer (4 band threads)"
   cmake -S "$root" -B "$root/build-tsan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DGE2GL_TSAN=ON \
     -DGE2GL_BUILD_GL=OFF -DGE2GL_BUILD_BENCH=OFF >/dev/null
   ninja -C "$root/build-tsan" -j"$jobs" test_soft ge2gl_cli
@@ -70,6 +92,7 @@ if [ "${GE2GL_SKIP_SANITIZE:-0}" != 1 ]; then
   done
 fi
 if [ "${GE2GL_SKIP_FUZZ:-0}" != 1 ]; then
-  echo "== fuzzing: every libFuzzer harness for 30 s (docs/fuzzing.md) =="
+  stage "fuzzing: every libFuzzer harness for 30 s (docs/fuzzing.md)"
   bash "$root/scripts/fuzz.sh" 30
 fi
+stage "full test command passed"
