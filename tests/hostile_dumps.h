@@ -265,6 +265,50 @@ inline dump::Dump sharedFramebufPayloadMany() {
     return repeatLast(w, 1, kSharedRecords);
 }
 
+// Draws whose primitives are cheap for the GE but not for the GL translator, which builds two
+// GL triangles per line or point fragment and a record per triangle on the CPU
+// (translator/vertex_pipeline.h kHostPixelsPerGlTriangle): one PRIM of `v` repeated `draws` times.
+inline dump::Dump repeatedDraw(u32 prim, const std::vector<BuildVertex>& v, u32 draws) {
+    dump::DumpWriter w = start();
+    w.registers(frameState());
+    const auto bytes = packVertices(kThroughColor, v.data(), u32(v.size()));
+    w.vertices(bytes.data(), u32(bytes.size()));
+    w.registers({word(GE_CMD_PRIM, (prim << 16) | u32(v.size()))});
+    return repeatLast(w, 2, draws);
+}
+// 999 screen-wide lines a draw, 1,000 draws: 480 fragments a line.
+inline dump::Dump lineStrips() {
+    std::vector<BuildVertex> v(1000);
+    for (size_t i = 0; i < v.size(); ++i) v[i].x = (i & 1) ? 479 : 0, v[i].y = (i & 2) ? 271 : 0, v[i].color = 0xFF00FF00;
+    return repeatedDraw(GE_PRIM_LINE_STRIP, v, 1000);
+}
+// 65,535 points a draw over the screen, 2,000 draws.
+inline dump::Dump pointClouds() {
+    std::vector<BuildVertex> v(65535);
+    for (size_t i = 0; i < v.size(); ++i) v[i].x = float(i % 480), v[i].y = float((i / 480) % 272), v[i].color = ~0u;
+    return repeatedDraw(GE_PRIM_POINTS, v, 2000);
+}
+// A 65,535-vertex strip of one-pixel triangles, 1,000 draws.
+inline dump::Dump tinyTriangleStrips() {
+    std::vector<BuildVertex> v(65535);
+    for (size_t i = 0; i < v.size(); ++i) {
+        v[i].x = float((i / 2) % 400) + float(i & 1) * 0.5f;
+        v[i].y = float((i / 800) % 200) + float(i & 1);
+        v[i].color = 0xFF0000FF;
+    }
+    return repeatedDraw(GE_PRIM_TRIANGLE_STRIP, v, 1000);
+}
+// 32,767 2×2 rectangles a draw, 2,000 draws.
+inline dump::Dump smallRectangles() {
+    std::vector<BuildVertex> v(65534);
+    for (size_t i = 0; i < v.size(); ++i) {
+        v[i].x = float((i / 2) % 470) + float(i & 1) * 2;
+        v[i].y = float((i / 940) % 270) + float(i & 1) * 2;
+        v[i].color = ~0u;
+    }
+    return repeatedDraw(GE_PRIM_RECTANGLES, v, 2000);
+}
+
 struct Named {
     const char* name;
     std::function<dump::Dump()> make;
@@ -289,7 +333,11 @@ inline std::vector<Named> all() {
             {"shared_edramtrans", sharedEdramTrans},
             {"shared_clutaddr", sharedClutAddr},
             {"shared_init_payload", sharedInitPayload},
-            {"shared_framebuf_payload_many", sharedFramebufPayloadMany}};
+            {"shared_framebuf_payload_many", sharedFramebufPayloadMany},
+            {"line_strips", lineStrips},
+            {"point_clouds", pointClouds},
+            {"tiny_triangle_strips", tinyTriangleStrips},
+            {"small_rectangles", smallRectangles}};
 }
 
 }  // namespace ge::hostile
