@@ -77,6 +77,111 @@ TEST(ReplayBudget, SharedPayloadCopiesStopAtTheBudget) {
     EXPECT_EQ(r.mem.read8(0x04000000), 0x5A);
 }
 
+// One 4 MiB REGISTERS payload behind 200,000 records: the player scans the payload for the
+// words it rewrites once (the scan is kept by payload offset and size), and each record's copy
+// into the list buffer and the GE's run of its words are charged, so the replay stops after a
+// few records instead of translating and running 2^38 words.
+TEST(ReplayBudget, SharedRegistersPayloadIsScannedOnceAndCharged) {
+    Replay r(sharedRegistersPayload(), dump::ReplayOptions::kDefaultMaxGeMs, false);
+    EXPECT_TRUE(r.res.timeLimitHit) << r.res.warning;
+    EXPECT_EQ(r.res.blockScans, 1u);
+    EXPECT_EQ(r.res.scannedBytes, u64(kSharedBytes));
+    const u64 budget = getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs);
+    // Each record: 1 Mi NOPs run (the block is larger than the list buffer: it is written and
+    // run in pieces) and 4 MiB copied.
+    const u64 perRecord = (kSharedBytes / 4) * getime::kPerCommand + getime::hostCopyCost(kSharedBytes);
+    EXPECT_LE(r.res.records, budget / perRecord + 4);
+    EXPECT_LE(r.res.listBytes, (budget / perRecord + 2) * u64(kSharedBytes));
+    // The GE ran the words: a block bigger than the list buffer is not dropped piece by piece.
+    EXPECT_GE(r.stats.commands, (r.res.records - 4) * (kSharedBytes / 4));
+}
+
+// A 192 KiB block behind 200,000 records fits the list buffer; each record wraps the list and
+// the GE, already at the buffer's start where the stall address goes, runs none of the later
+// ones (as in PPSSPP's player, docs/ppdmp.md §6.2). The player's copies alone must stop the replay.
+TEST(ReplayBudget, RegistersCopiesAreChargedWhenTheGeRunsNothing) {
+    Replay r(sharedRegistersBlock(), dump::ReplayOptions::kDefaultMaxGeMs, false);
+    EXPECT_TRUE(r.res.timeLimitHit) << r.res.warning;
+    EXPECT_EQ(r.res.blockScans, 1u);
+    const u64 budget = getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs);
+    const u64 block = 192u << 10;
+    EXPECT_LE(getime::hostCopyCost(r.res.listBytes), budget + getime::hostCopyCost(block));
+    EXPECT_LE(r.res.records, budget / getime::hostCopyCost(block) + 4);
+    // Only the first record's block runs (the GE stood after the list's first NOP then).
+    EXPECT_LT(r.stats.commands, block / 4 + 100);
+}
+
+// 65,536 different windows of one 4 MiB block: no record repeats another's payload, so each is
+// scanned; the scans are charged like the copies and the replay stops after a few.
+TEST(ReplayBudget, DistinctOverlappingRegistersPayloadsAreCharged) {
+    Replay r(slidingRegistersPayloads(), dump::ReplayOptions::kDefaultMaxGeMs, false);
+    EXPECT_TRUE(r.res.timeLimitHit) << r.res.warning;
+    const u64 budget = getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs);
+    EXPECT_LE(getime::hostCopyCost(r.res.scannedBytes), budget);
+    EXPECT_LE(r.res.blockScans, budget / getime::hostCopyCost(2 * u64(kSharedBytes)) + 4);
+}
+
+// The translation of a block found through the kept scan is the translation of a fresh one:
+// the same TBW/TBP/BASE rewrites, in order, with the player's state carried across records.
+TEST(ReplayBudget, RepeatedRegistersRecordsTranslateLikeFreshOnes) {
+    // One dump repeats a block three times, the other holds three copies of it.
+    auto make = [](bool shared) {
+        dump::DumpWriter w = start();
+        std::vector<u8> tex(64 * 64 * 4, 0x7F);
+        w.texture(0, tex.data(), u32(tex.size()));
+        std::vector<u32> block = frameState();
+        for (u32 k : {64u, 128u, 64u}) block.push_back(word(GE_CMD_TBW0, k));
+        block.push_back(word(GE_CMD_TBP0, 0x123456));
+        block.push_back(word(GE_CMD_BASE, 0x080000));
+        block.push_back(word(GE_CMD_TBW0 + 1, 32));
+        w.registers(block);
+        dump::Dump d = w.dump();
+        for (int i = 0; i < 2; ++i) {
+            dump::Record r = d.records.back();
+            if (!shared) {
+                const std::vector<u8> copy(d.pushbuf.begin() + r.ptr, d.pushbuf.begin() + r.ptr + r.size);
+                r.ptr = u32(d.pushbuf.size());
+                d.pushbuf.insert(d.pushbuf.end(), copy.begin(), copy.end());
+            }
+            d.records.push_back(r);
+        }
+        d.records.push_back(d.records[1]);
+        return d;
+    };
+    Replay shared(make(true), dump::ReplayOptions::kDefaultMaxGeMs, false);
+    Replay fresh(make(false), dump::ReplayOptions::kDefaultMaxGeMs, false);
+    EXPECT_EQ(shared.res.blockScans, 1u);
+    EXPECT_EQ(fresh.res.blockScans, 3u);
+    EXPECT_EQ(shared.res.listBytes, fresh.res.listBytes);
+    // The list buffers hold the same words.
+    const u32 n = u32(shared.res.listBytes + 16);
+    std::vector<u8> a(n), b(n);
+    shared.mem.read(kListBuf, a.data(), n);
+    fresh.mem.read(kListBuf, b.data(), n);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(shared.stats.commands, fresh.stats.commands);
+}
+
+// Every hostile dump, each record type's shared-payload shape among them: the replay ends, and
+// the work the player does on its own (copies, scans, list writes) and the commands the GE runs
+// stay within the budget, give or take one record.
+TEST(ReplayBudget, EveryHostileDumpStaysWithinTheBudget) {
+    const u64 budget = getime::cyclesFromMs(dump::ReplayOptions::kDefaultMaxGeMs);
+    // One record may overrun: a payload of up to 8 MiB copied and scanned, a MEMSET over VRAM and
+    // its mirrors (8 MiB), a catch-up of a list buffer's worth of commands.
+    const u64 slack = getime::hostCopyCost(3 * (8u << 20)) + getime::transferCost(8u << 20) +
+                      (kListBufWords + 4096) * getime::kPerCommand;
+    for (const auto& h : all()) {
+        SCOPED_TRACE(h.name);
+        Replay r(h.make(), dump::ReplayOptions::kDefaultMaxGeMs, false);
+        const u64 copies = getime::hostCopyCost(r.res.playerBytes + r.res.scannedBytes + r.res.listBytes) +
+                           getime::transferCost(r.res.cpuBytes);
+        EXPECT_LE(copies, budget + slack);
+        EXPECT_LE(r.stats.cycles, budget + slack);
+        EXPECT_LE(r.stats.commands, (budget + slack) / getime::kPerCommand);
+    }
+}
+
 TEST(ReplayBudget, RealFramesStayFarBelowTheDefault) {
     // The project's scenes (the 20 frametests' real frames take at most about 30 ms of GE time,
     // docs/timing.md).

@@ -176,6 +176,9 @@ int cmdRender(const std::string& path, const tools::RenderOptions& opt, const st
         std::printf("replay timing: %s\nreplay syncs: %llu\nslab maps: %llu\nextra maps: %llu\nlist wraps: %llu\n",
                     dump::replayTimingName(opt.replayTiming), (unsigned long long)r.syncs,
                     (unsigned long long)r.slabMaps, (unsigned long long)r.extraMaps, (unsigned long long)r.listWraps);
+        std::printf("register blocks scanned: %llu (%llu bytes)\nlist bytes written: %llu\n",
+                    (unsigned long long)r.blockScans, (unsigned long long)r.scannedBytes,
+                    (unsigned long long)r.listBytes);
         if (!out.backendStats.empty()) std::printf("%s", out.backendStats.c_str());
     }
     return 0;

@@ -3,7 +3,8 @@
 //
 // Per draw: the CPU vertex pipeline produces GL-ready vertices in drawing coordinates; the state
 // decides a "setup" (shader keys, uniform values, texture, targets, scissor). Consecutive draws
-// with byte-identical setups are batched into one GL draw. At flush the targets are made valid,
+// with byte-identical setups are batched into one GL draw, up to kGlBatchTriangles GL triangles
+// (a larger draw is drawn in parts as the vertex pipeline builds it: docs/timing.md). At flush the targets are made valid,
 // the program is fetched from the cache and the batch is drawn:
 //  - no destination read: one glDrawArrays;
 //  - framebuffer fetch: one glDrawArrays (coherent fetch orders overlapping primitives);
@@ -90,6 +91,7 @@ public:
                            (opt.vertices == GlOptions::Vertices::Auto && !software);
         }
         std::memset(static_cast<void*>(&batchSetup_), 0, sizeof batchSetup_);
+        pipeline_.setOutputLimit(kBatchTriangles, &GlRenderer::drawOutputFull, this);
         gl_.GenVertexArrays(1, &vao_);
         gl_.GenBuffers(1, &vbo_);
         gl_.BindVertexArray(vao_);
@@ -254,26 +256,50 @@ public:
         if (gpuVertices_ && drawPrimOnGpu(p)) return;
         const GeState& st = *p.state;
         std::string err;
-        drawGeo_.clear();
+        startDraw(st, shadergen::DrawFlags::fromState(st));
         if (!pipeline_.processPrim(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
-        addDraw(st, shadergen::DrawFlags::fromState(st));
+        addDraw();
     }
 
     void drawPatch(const PatchPacket& p) override {
         ++stats_.draws;
         const GeState& st = *p.state;
         std::string err;
-        drawGeo_.clear();
+        startDraw(st, shadergen::DrawFlags::fromState(st));
         if (!pipeline_.processPatch(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
-        addDraw(st, shadergen::DrawFlags::fromState(st));
+        addDraw();
     }
 
-    void addDraw(const GeState& st, shadergen::DrawFlags flags) {
-        if (drawGeo_.empty()) return;
-        flags.vertexAlphaFull = pipeline_.drawAlphaFull();
-        if (!beginDraw(st, flags)) return;
-        geo_.append(drawGeo_);
+    // The draw whose geometry the pipeline builds next (addDraw hands it to the batch).
+    void startDraw(const GeState& st, const shadergen::DrawFlags& flags) {
+        drawGeo_.clear();
+        drawState_ = &st;
+        drawFlags_ = flags;
     }
+    // The draw's geometry (all of it, or what the pipeline has built when it reached
+    // kBatchTriangles) joins the batch. A batch holds at most kBatchTriangles GL triangles: the
+    // CPU arrays of one batch (vertices, bounds, triangle records) stay bounded, whatever a draw
+    // or a run of draws with one setup asks for, and the arrays are trimmed after each flush.
+    // A draw split this way decides its setup per part, each part with the colours of the
+    // primitives so far (the reference's skipped alpha test, referenceSkipsAlphaTest, looks at
+    // the whole draw): only a draw of more than kBatchTriangles GL triangles can tell.
+    void addDraw() {
+        if (drawGeo_.empty()) return;
+        shadergen::DrawFlags flags = drawFlags_;
+        flags.vertexAlphaFull = pipeline_.drawAlphaFull();
+        if (!beginDraw(*drawState_, flags)) {
+            drawGeo_.clear();
+            return;
+        }
+        if (geo_.triangles() + drawGeo_.triangles() > kBatchTriangles) {
+            flush();
+            batchGeneration_ = generation_;
+        }
+        geo_.append(drawGeo_);
+        drawGeo_.clear();
+    }
+    static void drawOutputFull(void* self) { static_cast<GlRenderer*>(self)->addDraw(); }
+    static constexpr size_t kBatchTriangles = kGlBatchTriangles;
 
     void drawImmediate(const ImmPacket& p) override {
         ++stats_.draws;
@@ -292,9 +318,9 @@ public:
         vs.cullCcw = (f >> 20) & 1;
         vs.texture = df.texture && !st.isClearMode();
         vs.fog = df.fog && !st.isThrough();
-        drawGeo_.clear();
+        startDraw(st, df);
         pipeline_.processImmediate(st, p, vs, drawGeo_);
-        addDraw(st, df);
+        addDraw();
     }
 
     void blockTransfer(const TransferPacket& t, Memory& mem) override {
@@ -352,6 +378,9 @@ public:
         for (size_t i = 0; i < size_t(CpuReason::Count) && i < 8; ++i) s.cpuVertexByReason[i] = gpu_.stats().cpu[i];
         s.textureCacheHits = textures_.stats().hits;
         s.readbacks = fb_.readbacks();
+        s.cpuTriangles = pipeline_.glTriangles();
+        s.cpuTriangleCycles = pipeline_.hostPixels() / 3;  // pixels at 1/3 cycle (hle/ge_time.h)
+        s.cpuGeometryBytes = geo_.reservedBytes() + drawGeo_.reservedBytes();
         return s;
     }
 
@@ -884,7 +913,11 @@ private:
                                  s.ff.colorMask[2] || s.ff.colorMask[3];
         if (colorWrites) ct->dirty.add(drawn);
         if (dt && s.ff.depthMask) dt->dirty.add(drawn);
+        const size_t drawnTriangles = geo_.triangles();
+        stats_.batchPeak = std::max<u64>(stats_.batchPeak, drawnTriangles);
         geo_.clear();
+        geo_.trim(drawnTriangles);
+        drawGeo_.trim(drawnTriangles);
     }
 
     HostGlState hostState_;  // Current contexts: the host's state while ge2gl works (hostEnter)
@@ -915,6 +948,8 @@ private:
     u64 batchGeneration_ = 0;
     Geometry geo_;
     Geometry drawGeo_;  // the current draw's geometry, before it joins the batch
+    const GeState* drawState_ = nullptr;  // the current draw's state and flags (startDraw)
+    shadergen::DrawFlags drawFlags_{};
     Setup batchSetup_;
     StateCache cache_;
     // Per program: the fragment uniforms last uploaded (applyState).
@@ -980,6 +1015,10 @@ std::string glStatsText(const GlStats& s) {
     line("transfersGpu", s.transfersGpu);
     line("gpuVertexDraws", s.gpuVertexDraws);
     line("cpuVertexDraws", s.cpuVertexDraws);
+    line("cpuTriangles", s.cpuTriangles);
+    line("cpuTriangleCycles", s.cpuTriangleCycles);
+    line("batchPeak", s.batchPeak);
+    line("cpuGeometryBytes", s.cpuGeometryBytes);
     for (size_t i = 0; i < size_t(CpuReason::Count) && i < 8; ++i)
         if (s.cpuVertexByReason[i]) {
             char name[64];

@@ -59,6 +59,10 @@ struct GlOptions {
     bool floatInterpolation = false;
 };
 
+// The most GL triangles the translator holds on the CPU before it draws them (one batch, or the
+// part of one huge draw built so far): about 25 MB of vertices, bounds and exact-mode records.
+inline constexpr size_t kGlBatchTriangles = size_t(1) << 16;
+
 struct GlStats {
     u64 draws = 0, glDrawCalls = 0, stateChanges = 0, shaderCompiles = 0, shaderCacheHits = 0, diskCacheHits = 0,
         textureUploads = 0, textureCacheHits = 0, readbacks = 0,
@@ -70,7 +74,13 @@ struct GlStats {
         // the CPU (reasons in gpuVertexStats, gpu_vertex_path.h).
         gpuVertexDraws = 0, cpuVertexDraws = 0,
         // Fragment-uniform sets per flush: uploaded / skipped because the program already held them.
-        uniformUploads = 0, uniformUploadsSkipped = 0;
+        uniformUploads = 0, uniformUploadsSkipped = 0,
+        // GL triangles built on the CPU (a line or point fragment's quad counts two), and the GE
+        // time charged for them while a GE-time limit was set (VertexPipeline::kHostPixelsPerGlTriangle).
+        cpuTriangles = 0, cpuTriangleCycles = 0,
+        // The most GL triangles one batch held, and the bytes the CPU geometry arrays (batch and
+        // current draw) hold reserved now.
+        batchPeak = 0, cpuGeometryBytes = 0;
     u64 cpuVertexByReason[8] = {};  // gpu_vertex_path.h CpuReason order
 };
 

@@ -185,6 +185,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
         }
     }
     if (!vs_.records) {
+        emitting(1);
         out_->tris.insert(out_->tris.end(), g, g + 3);
         PrimBounds bb = boundsOf(g, 3);
         bb.joinPrev = joinPrev;
@@ -221,6 +222,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
         for (int i = 0; i < 4; ++i) grown[i] = g[0], grown[i].x = corner[i][0], grown[i].y = corner[i][1];
         n = 4;
     }
+    emitting(u64(n - 2));
     for (int k = 1; k + 1 < n; ++k) {
         const GlVertex t[3] = {grown[0], grown[k], grown[k + 1]};
         out_->tris.insert(out_->tris.end(), t, t + 3);
@@ -260,6 +262,7 @@ void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVert
         TriRecord rec;
         int box[4];
         if (!packRectangle(rasterParams(), v0, v1, rec, box)) return;
+        emitting(2);
         tl.x = bl.x = float(box[0]), tr.x = br.x = float(box[2] + 1);
         tl.y = tr.y = float(box[1]), bl.y = br.y = float(box[3] + 1);
         out_->records.push_back(rec);
@@ -272,6 +275,7 @@ void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVert
         // to the reference's pixel box, its texture coordinates extended along the same linear map.
         geo::RectSetup rs;
         if (!geo::rectangleSetup(rasterParams(), v0, v1, rs)) return;
+        emitting(2);
         const GlVertex otl = tl, otr = tr, obl = bl, obr = br;
         auto at = [&](float x, float y) {
             const float u = (x - otl.x) / (otr.x - otl.x), v = (y - otl.y) / (obl.y - otl.y);
@@ -302,6 +306,7 @@ void VertexPipeline::sinkFlush(void* ctx, const geo::Fragment* f, size_t n) {
 void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
     // Each fragment of a line or point becomes a one-pixel quad with the fragment's attributes:
     // the GE's line DDA (shared with the software model) decides coverage, not GL.
+    emitting(2 * u64(n));
     for (size_t i = 0; i < n; ++i) {
         GlVertex g;
         g.z = float(f[i].z);
@@ -329,6 +334,13 @@ void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
             out_->records.push_back(out_->records.back());
         }
     }
+}
+
+void VertexPipeline::trimVertices() {
+    // A PRIM has at most 65,535 vertices; a patch's tessellation can have far more.
+    constexpr size_t kKeep = size_t(1) << 17;
+    if (cverts_.capacity() > kKeep) std::vector<geo::ClipVertex>().swap(cverts_);
+    if (seq_.capacity() > kKeep) std::vector<u32>().swap(seq_);
 }
 
 void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
@@ -549,6 +561,7 @@ bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const Pa
     stripOdd_ = false;
     assemble(tess.prim, seq_, false);
     stripOdd_ = odd;
+    trimVertices();
     return true;
 }
 

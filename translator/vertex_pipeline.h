@@ -17,6 +17,7 @@
 // rules differ from the GE's DDA): each of their fragments becomes a one-pixel quad carrying that
 // fragment's exact attributes.
 #pragma once
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,21 @@ struct Geometry {
         records.insert(records.end(), g.records.begin(), g.records.end());
     }
     bool empty() const { return tris.empty(); }
+    size_t triangles() const { return triBounds.size(); }
+    size_t reservedBytes() const {
+        return tris.capacity() * sizeof(GlVertex) + triBounds.capacity() * sizeof(PrimBounds) +
+               records.capacity() * sizeof(TriRecord);
+    }
+    // After a flush: hands the arrays' memory back when it is far more than `triangles` GL
+    // triangles need (a huge batch once must not keep its peak resident for the rest of the run).
+    void trim(size_t triangles) {
+        const size_t keep = std::max<size_t>(4 * triangles, kTrimFloor);
+        if (triBounds.capacity() <= keep) return;
+        std::vector<GlVertex>().swap(tris);
+        std::vector<PrimBounds>().swap(triBounds);
+        std::vector<TriRecord>().swap(records);
+    }
+    static constexpr size_t kTrimFloor = 16384;  // GL triangles kept without question (6 MB exact)
 };
 
 // Per-draw switches (immediate-mode vertices override some, ge-rules.md §3.12).
@@ -97,9 +113,34 @@ public:
     // fragment has alpha 255 (as the software model counts them: primitives not wholly outside
     // the clip rectangle; all vertices with Gouraud shading, else the provoking one).
     bool drawAlphaFull() const { return alphaFull_; }
-    // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h).
+    // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h),
+    // plus, while the engine hands a pixel budget (a GE-time limit is set: dump replays), the
+    // CPU side of the GL triangles built: kHostPixelsPerGlTriangle each.
     u64 pixelWork() const { return pixelWork_; }
-    void setPixelBudget(u64 pixels) { pixelBudgetLeft_ = pixels; }
+    void setPixelBudget(u64 pixels) {
+        pixelBudgetLeft_ = pixels;
+        budgeted_ = pixels != ~u64(0);
+    }
+    // GL triangles built on the CPU so far (one-pixel fragment quads count two), and the part of
+    // pixelWork() charged for them.
+    u64 glTriangles() const { return glTriangles_; }
+    u64 hostPixels() const { return hostPixels_; }
+    // What the GL backend builds on the CPU per triangle it hands to GL — transformed vertices,
+    // bounds, in exact mode a 240-byte record of the rasteriser's setup — and what GL then does
+    // with it cost the host far more per pixel than the software model's shading: a one-pixel
+    // quad per line or point fragment in particular (measured on the 2-core build machine with
+    // llvmpipe: about 1.5 µs per GL triangle against 0.1 µs per fragment shaded by the software
+    // model). A GE-time budget that bounds the software model's work therefore does not bound
+    // this: each GL triangle is charged 16 cycles (48 pixels at hle/ge_time.h's 1/3 cycle a
+    // pixel), so the default budget (166.7 ms, 37 M cycles) buys at most 2.3 M of them, and the
+    // frametests' frames pay a few milliseconds more (docs/timing.md).
+    static constexpr u64 kHostPixelsPerGlTriangle = 48;
+    // When a process* call's output reaches `triangles` GL triangles, `full(ctx)` is called; it
+    // takes the geometry (draws or batches it) and empties the output, and the draw goes on. One
+    // huge draw (a long line strip, a patch) then never holds all its CPU geometry at once.
+    void setOutputLimit(size_t triangles, void (*full)(void*), void* ctx) {
+        outLimit_ = triangles, outFull_ = full, outCtx_ = ctx;
+    }
 
 private:
     void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
@@ -123,6 +164,20 @@ private:
     bool notePrimitive(geo::PrimKind kind, const geo::ScreenVertex& a, const geo::ScreenVertex& b,
                        const geo::ScreenVertex& c, const geo::ScreenVertex& prov);
     static void sinkFlush(void* ctx, const geo::Fragment* f, size_t n);
+    // `n` more GL triangles are about to be added to the output: it is handed on first when they
+    // would not fit (setOutputLimit), and they are charged (kHostPixelsPerGlTriangle).
+    void emitting(u64 n) {
+        if (outFull_ && out_->triangles() + n > outLimit_) outFull_(outCtx_);
+        glTriangles_ += n;
+        if (budgeted_) {  // no GE-time limit (a host's own GE): not charged
+            const u64 px = n * kHostPixelsPerGlTriangle;
+            pixelWork_ += px;
+            hostPixels_ += px;
+            pixelBudgetLeft_ -= std::min(px, pixelBudgetLeft_);
+        }
+    }
+    // Vertex arrays sized by one draw: given back after a draw far larger than usual.
+    void trimVertices();
 
     // Per-draw context (valid during one process* call).
     const GeState* st_ = nullptr;
@@ -132,6 +187,11 @@ private:
     bool alphaFull_ = true;
     u64 pixelWork_ = 0;
     u64 pixelBudgetLeft_ = ~u64(0);
+    bool budgeted_ = false;  // the engine handed a pixel budget (a GE-time limit is set)
+    u64 glTriangles_ = 0, hostPixels_ = 0;
+    size_t outLimit_ = ~size_t(0);
+    void (*outFull_)(void*) = nullptr;
+    void* outCtx_ = nullptr;
 
     std::vector<DecodedVertex> decoded_;
     std::vector<geo::ClipVertex> cverts_;

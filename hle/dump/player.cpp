@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
+#include <unordered_map>
 #include <vector>
 
 #include "hle/dump/replay_memory.h"
@@ -41,8 +43,22 @@ private:
         if (!a) warn(std::string("no guest memory left for a ") + recordTypeName(r.type) + " payload");
         return a;
     }
+    // Where in a REGISTERS payload the words are that the player rewrites or counts: TBPn, TBWn,
+    // SIGNAL, BASE and the kicks (docs/ppdmp.md §6.2). Found once per distinct payload, keyed by
+    // its offset and size: a dump may point many records at one block (§3.1), and each record
+    // then costs a copy of the block plus the rewrites, not a walk over its words.
+    struct BlockScan {
+        bool dense = false;         // too many such words to keep: each use walks the block
+        std::vector<u32> special;   // word indices, in order
+    };
+    const BlockScan& scanBlock(const Record& r, const u8* p);
+    // Rewrites the word at `w` as the player does; false when it is the kick --replay-end stops at.
+    bool translateWord(u8* w);
     void registers(const Record& r, const u8* p);
-    void appendToList(const std::vector<u32>& words);
+    // Writes `size` bytes into the list buffer, in pieces that `produce(dst, offset, n)` fills;
+    // it returns how many of the n bytes to write (fewer: the block ends there).
+    using Producer = std::function<size_t(u8*, size_t, size_t)>;
+    void appendToList(size_t size, const Producer& produce);
     void wrapList();
     void sync();
     void endList();
@@ -74,6 +90,13 @@ private:
     PushbufMapper mapper_;
 
     std::vector<u32> pending_;  // words queued by data records for the next REGISTERS block
+    std::vector<u8> piece_;     // one piece of a block on its way into the list buffer (reused)
+    // Scans of REGISTERS payloads by (offset << 32 | size). Bounded: kept scans hold at most
+    // kMaxScanIndices indices and kMaxScans entries (the cache starts over when full), and a
+    // payload with more than kMaxBlockSpecials such words is marked dense instead.
+    std::unordered_map<u64, BlockScan> scans_;
+    u64 scanIndices_ = 0;
+    static constexpr size_t kMaxBlockSpecials = 1u << 16, kMaxScanIndices = 1u << 22, kMaxScans = 1u << 16;
     u32 listBuf_ = 0;           // 0 until the first REGISTERS block (as PPSSPP)
     u32 pos_ = 0;               // where the next word goes
     u32 lastTex_[8] = {}, lastBufw_[8] = {};
@@ -88,10 +111,20 @@ private:
     // transfers) and the player's own copies (FRAMEBUF/CLUT data, push-buffer slabs and extras:
     // no PSP work at all, charged at a host copy's pace so that a dump cannot make the player
     // copy without end; hle/ge_time.h).
+    // REGISTERS records cost the player a scan of each distinct payload and a copy of every
+    // block into its list buffer (res_.scannedBytes, res_.listBytes), charged the same way: a
+    // dump that repeats one large block cannot make the player copy without end either, whether
+    // or not the GE gets to run the words.
     u64 budget_ = ~u64(0), cycleBase_ = 0, cpuBytes_ = 0, playerBytes_ = 0;
     size_t record_ = 0;
     u64 copyCycles() const {
-        return getime::transferCost(cpuBytes_) + getime::hostCopyCost(playerBytes_ + mapper_.stats().bytesCopied);
+        return getime::transferCost(cpuBytes_) +
+               getime::hostCopyCost(playerBytes_ + mapper_.stats().bytesCopied + res_.scannedBytes + res_.listBytes);
+    }
+    bool copiesLeft() {
+        if (copyCycles() < budget_) return true;
+        budgetExhausted();
+        return false;
     }
     // Hands the GE what is left of the budget; false (and the replay stops) when nothing is.
     bool budgetLeft();
@@ -153,27 +186,86 @@ void Replayer::wrapList() {
     sync();
 }
 
-void Replayer::appendToList(const std::vector<u32>& words) {
+void Replayer::appendToList(size_t size, const Producer& produce) {
     const u32 end = listBuf_ + kListBufSize;
     // PPSSPP wraps when the words and 8 bytes for the next BASE + JUMP would reach the end.
-    if (u64(pos_) + 4 * u64(words.size()) + 8 >= end) wrapList();
+    if (u64(pos_) + size + 8 >= end) wrapList();
     size_t i = 0;
-    while (i < words.size()) {
+    while (i < size && !stopped_) {
         // A block larger than the whole buffer (PPSSPP would write past its end): written in
-        // pieces, the list wrapping (and running) between them.
-        const size_t room = (end - pos_ - 12) / 4;
+        // pieces, each run before the list wraps over it. Without that catch-up the GE would
+        // still stand at the buffer's start, where the last wrap put the stall address, and run
+        // nothing of the block but its last piece.
+        const size_t room = size_t(end - pos_ - 12) / 4 * 4;
         if (room == 0) {
             wrapList();
             continue;
         }
-        const size_t n = std::min(words.size() - i, room);
-        std::vector<u8> bytes(4 * n);
-        for (size_t k = 0; k < n; ++k) writeLE32(&bytes[4 * k], words[i + k]);
-        t_.write(pos_, bytes.data(), u32(bytes.size()));
-        pos_ += u32(4 * n);
+        size_t n = std::min(size - i, room);
+        piece_.resize(n);
+        const size_t want = n;
+        n = produce(piece_.data(), i, n);
+        t_.write(pos_, piece_.data(), u32(n));
+        res_.listBytes += n;
+        pos_ += u32(n);
         i += n;
-        if (i < words.size()) wrapList();
+        if (n < want || stopped_ || !copiesLeft()) break;
+        if (i < size) {
+            sync();
+            if (!stopped_) wrapList();
+        }
     }
+}
+
+const Replayer::BlockScan& Replayer::scanBlock(const Record& r, const u8* p) {
+    const u64 key = (u64(r.ptr) << 32) | r.size;
+    if (auto it = scans_.find(key); it != scans_.end()) return it->second;
+    ++res_.blockScans;
+    res_.scannedBytes += r.size;
+    BlockScan scan;
+    const u32 n = r.size / 4;
+    for (u32 i = 0; i < n; ++i) {
+        const u8 op = p[4 * i + 3];
+        if ((op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) || (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) ||
+            op == GE_CMD_SIGNAL || op == GE_CMD_BASE || isKick(op)) {
+            if (scan.special.size() == kMaxBlockSpecials) {
+                scan.dense = true;
+                scan.special = {};
+                break;
+            }
+            scan.special.push_back(i);
+        }
+    }
+    if (scans_.size() >= kMaxScans || scanIndices_ + scan.special.size() > kMaxScanIndices) {
+        scans_.clear();
+        scanIndices_ = 0;
+    }
+    scanIndices_ += scan.special.size();
+    return scans_.emplace(key, std::move(scan)).first->second;
+}
+
+bool Replayer::translateWord(u8* at) {
+    u32 w = readLE32(at);
+    const u8 op = u8(w >> 24);
+    if (op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) {
+        w = 0;  // texture addresses come from the data records
+    } else if (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) {
+        const int lv = op - GE_CMD_TBW0;
+        const u32 width = w & 0xFFFF;
+        if (width == lastBufw_[lv]) w = 0;
+        else w = cmd(op, ((lastTex_[lv] >> 8) & 0xFF0000) | width);
+        lastBufw_[lv] = width;
+    } else if (op == GE_CMD_SIGNAL || op == GE_CMD_BASE) {
+        lastBase_ = ~0u;
+    } else if (isKick(op)) {
+        ++kicks_;
+        if (opt_.replayEnd && kicks_ >= opt_.replayEnd) {
+            stopped_ = true;  // --replay-end: this kick is the block's last word
+            return false;
+        }
+    }
+    writeLE32(at, w);
+    return true;
 }
 
 void Replayer::registers(const Record& r, const u8* p) {
@@ -190,34 +282,38 @@ void Replayer::registers(const Record& r, const u8* p) {
         t_.startList(listBuf_, pos_);
         t_.runTo(pos_, 16);
     }
-    std::vector<u32> words;
-    words.swap(pending_);
-    const u32 n = r.size / 4;
-    words.reserve(words.size() + n);
-    for (u32 i = 0; i < n; ++i) {
-        u32 w = readLE32(p + 4 * i);
-        const u8 op = u8(w >> 24);
-        if (op >= GE_CMD_TBP0 && op <= GE_CMD_TBP7) {
-            w = 0;  // texture addresses come from the data records
-        } else if (op >= GE_CMD_TBW0 && op <= GE_CMD_TBW7) {
-            const int lv = op - GE_CMD_TBW0;
-            const u32 width = w & 0xFFFF;
-            if (width == lastBufw_[lv]) w = 0;
-            else w = cmd(op, ((lastTex_[lv] >> 8) & 0xFF0000) | width);
-            lastBufw_[lv] = width;
-        } else if (op == GE_CMD_SIGNAL || op == GE_CMD_BASE) {
-            lastBase_ = ~0u;
+    const BlockScan& scan = scanBlock(r, p);
+    // The queued words, then the block's words as they are with the few the player rewrites
+    // patched in (payload and list buffer both hold little-endian GE words), produced one list
+    // piece at a time so that no copy of a whole large block is made.
+    std::vector<u8> head(4 * pending_.size());
+    for (size_t k = 0; k < pending_.size(); ++k) writeLE32(&head[4 * k], pending_[k]);
+    pending_.clear();
+    const size_t words = r.size / 4;
+    size_t next = 0;  // the next entry of scan.special, or the next word when the scan is dense
+    const Producer produce = [&](u8* dst, size_t off, size_t n) -> size_t {
+        // [off, off + n) of head + payload; off and n are multiples of 4.
+        const size_t from = off, to = off + n;
+        if (from < head.size()) std::memcpy(dst, &head[from], std::min(to, head.size()) - from);
+        if (to > head.size()) {
+            const size_t a = std::max(from, head.size());
+            std::memcpy(dst + (a - from), p + (a - head.size()), to - a);
         }
-        words.push_back(w);
-        if (isKick(op)) {
-            ++kicks_;
-            if (opt_.replayEnd && kicks_ >= opt_.replayEnd) {
-                stopped_ = true;
-                break;
-            }
+        const size_t firstWord = from > head.size() ? (from - head.size()) / 4 : 0;
+        const size_t endWord = to > head.size() ? (to - head.size()) / 4 : 0;
+        auto rewrite = [&](size_t w) {
+            return translateWord(dst + (head.size() + 4 * w - from));
+        };
+        if (scan.dense) {
+            for (next = std::max(next, firstWord); next < endWord; ++next)
+                if (!rewrite(next)) return head.size() + 4 * (next + 1) - from;  // the kick ends the block
+        } else {
+            for (; next < scan.special.size() && scan.special[next] < endWord; ++next)
+                if (!rewrite(scan.special[next])) return head.size() + 4 * (scan.special[next] + 1) - from;
         }
-    }
-    appendToList(words);
+        return n;
+    };
+    appendToList(head.size() + 4 * words, produce);
     if (opt_.timing == ReplayTiming::Eager) sync();
 }
 
@@ -250,10 +346,7 @@ bool Replayer::play(std::string& err) {
     for (size_t ri = 0; ri < d_.records.size() && !stopped_; ++ri) {
         record_ = ri;
         // Host copies are charged as they happen; the GE's own work at each catch-up (sync).
-        if (copyCycles() >= budget_) {
-            budgetExhausted();
-            break;
-        }
+        if (!copiesLeft()) break;
         const Record& r = d_.records[ri];
         ++res_.records;
         const u8* p = d_.payload(r);
@@ -379,6 +472,8 @@ bool Replayer::play(std::string& err) {
     endList();
     t_.setTimeLimit(~u64(0));
     res_.geCycles = t_.geCycles() - cycleBase_ + copyCycles();
+    res_.playerBytes = playerBytes_ + mapper_.stats().bytesCopied;
+    res_.cpuBytes = cpuBytes_;
     res_.draws = kicks_;
     res_.slabMaps = mapper_.stats().slabMaps;
     res_.extraMaps = mapper_.stats().extraMaps;

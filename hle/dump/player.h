@@ -52,6 +52,15 @@ struct ReplayResult {
     u64 listErrors = 0;             // list errors met (the player restarts the list and goes on)
     u64 syncs = 0;                  // times the GE was let catch up (stall address moved)
     u64 slabMaps = 0, extraMaps = 0, listWraps = 0;  // push-buffer mappings, list-buffer wraps
+    // The player's own work on REGISTERS records (docs/ppdmp.md §6.2): distinct payloads scanned
+    // for the words it rewrites (once per payload offset and size; a record that repeats one
+    // reuses the scan) and the bytes it scanned, and the bytes it wrote into its list buffer.
+    // Both byte counts are charged to the GE-time budget at a host copy's pace (hle/ge_time.h).
+    u64 blockScans = 0, scannedBytes = 0, listBytes = 0;
+    // Other copies: the player's own (push-buffer slabs and extras, FRAMEBUF and VRAM CLUT
+    // bytes), charged like the above, and the game's CPU/DMA writes (MEMSET, MEMCPYDATA into
+    // VRAM), charged as block transfers.
+    u64 playerBytes = 0, cpuBytes = 0;
     u64 geCycles = 0;               // GE-time estimate of the replay (hle/ge_time.h), copies included
     bool timeLimitHit = false;      // the GE-time budget ran out: the frame is cut short
     std::string warning;            // first non-fatal problem, if any
