@@ -18,80 +18,31 @@
 #include "ge2gl/ge2gl.h"
 #include "hle/list_builder.h"
 #include "hle/memory.h"
+#include "tests/api_embed_host.h"
 #include "tests/api_gl_host.h"
 
 using namespace apitest;
 
 namespace {
 
-constexpr uint32_t kRam = 0x08000000, kRamSize = 8u << 20, kVram = 0x04000000;
+constexpr uint32_t kRam = 0x08000000, kRamSize = GameHost::kRamSize, kVram = 0x04000000;
 constexpr uint32_t RED = 0xFF0000FF, GREEN = 0xFF00FF00, BLUE = 0xFFFF0000;  // ABGR
 constexpr uint32_t kVt = ge::vt::COL_8888 | ge::vt::POS_16 | ge::vt::THROUGH;
 
 enum class Backend { Soft, Gl, GlEgl };
 const char* backendName(Backend b) { return b == Backend::Soft ? "soft" : b == Backend::Gl ? "gl-osmesa" : "gl-egl"; }
 
-// A host that owns RAM and VRAM (used in place by ge2gl) and writes lists like a game.
-struct EmbedHost {
-    std::vector<uint8_t> ram = std::vector<uint8_t>(kRamSize), vram = std::vector<uint8_t>(0x200000);
-    ge::Memory mem{ram.data(), kRamSize, vram.data()};  // the host's view, for ListBuilder
-    ge2gl_context* h = nullptr;
-    ge2gl_status status = GE2GL_ERR_BACKEND;
-    uint32_t arena = 0x08200000;  // next list's arena
-    std::vector<std::pair<uint32_t, uint32_t>> dirty;
-
-    // `backend`: a GE2GL_BACKEND_*; `tweak` adjusts the config before creation.
-    template <class Tweak>
-    EmbedHost(int backend, Tweak tweak) {
-        ge2gl_config cfg;
-        ge2gl_config_init(&cfg);
-        cfg.ram = ram.data();
-        cfg.ram_size = kRamSize;
-        cfg.vram = vram.data();
-        cfg.backend = backend;
-        cfg.callbacks.user = this;
-        cfg.vram_dirty = [](void* u, uint32_t a, uint32_t n) { static_cast<EmbedHost*>(u)->dirty.emplace_back(a, n); };
-        tweak(cfg);
-        status = ge2gl_create(&cfg, &h);
-    }
-    explicit EmbedHost(int backend) : EmbedHost(backend, [](ge2gl_config&) {}) {}
-    EmbedHost(Backend b) : EmbedHost(b == Backend::Soft ? GE2GL_BACKEND_SOFT : GE2GL_BACKEND_GL_HEADLESS,
-                                     [b](ge2gl_config& c) { c.gl_use_egl = b == Backend::GlEgl; }) {}
-    ~EmbedHost() { ge2gl_destroy(h); }
-
-    // A list in the next arena: frame buffer 8888 at VRAM 0 (stride 512), then `body`, FINISH.
-    template <class Body>
-    uint32_t list(Body body) {
-        ge::ListBuilder b(&mem, arena);
-        arena += 0x10000;
-        b.drawBuffer(ge::GE_FORMAT_8888, 0, 512);
-        b.scissor(0, 0, 480, 272);
-        b.region(0, 0, 480, 272);
-        body(b);
-        b.finish();
-        return b.placeList();
-    }
+// The game-like host (tests/api_embed_host.h), also made from a test parameter.
+struct EmbedHost : GameHost {
+    using GameHost::GameHost;
+    EmbedHost(Backend b) : GameHost(b == Backend::Soft ? GE2GL_BACKEND_SOFT : GE2GL_BACKEND_GL_HEADLESS,
+                                    [b](ge2gl_config& c) { c.gl_use_egl = b == Backend::GlEgl; }) {}
     static void rect(ge::ListBuilder& b, int x0, int y0, int x1, int y1, uint32_t abgr) {
         ge::BuildVertex v[2];
         v[0].x = float(x0), v[0].y = float(y0), v[0].color = abgr;
         v[1].x = float(x1), v[1].y = float(y1), v[1].color = abgr;
         b.drawArrayData(ge::GE_PRIM_RECTANGLES, kVt, 2, nullptr, ge::packVertices(kVt, v, 2).data());
     }
-    static void clearTo(ge::ListBuilder& b, uint32_t abgr) { b.clear(ge::CLEAR_COLOR | ge::CLEAR_STENCIL, abgr, 0); }
-
-    // Enqueues and waits (draw sync); returns the sync status.
-    ge2gl_status draw(uint32_t listAddr) {
-        int32_t id = -1, s = -1;
-        if (ge2gl_status st = ge2gl_list_enqueue(h, listAddr, 0, -1, nullptr, &id); st != GE2GL_OK) return st;
-        return ge2gl_draw_sync(h, GE2GL_SYNC_WAIT, &s);
-    }
-    // The host's own VRAM bytes at (x, y) of the 8888 frame buffer, as ABGR.
-    uint32_t hostPixel(int x, int y) const {
-        uint32_t v;
-        std::memcpy(&v, &vram[(size_t(y) * 512 + size_t(x)) * 4], 4);
-        return v;
-    }
-    void pokePixel(int x, int y, uint32_t abgr) { std::memcpy(&vram[(size_t(y) * 512 + size_t(x)) * 4], &abgr, 4); }
 };
 
 bool glAvailable(Backend b) {

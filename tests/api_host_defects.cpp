@@ -18,88 +18,32 @@
 #include "ge2gl/ge2gl.h"
 #include "hle/list_builder.h"
 #include "hle/memory.h"
+#include "tests/api_embed_host.h"
 #include "tests/api_gl_host.h"
 
 using namespace apitest;
 
 namespace {
 
-constexpr uint32_t kRamSize = 8u << 20, kVram = 0x04000000;
+constexpr uint32_t kRamSize = GameHost::kRamSize, kVram = 0x04000000;
 constexpr uint32_t RED = 0xFF0000FF, BLUE = 0xFFFF0000;  // ABGR
 constexpr uint32_t kVt = ge::vt::COL_8888 | ge::vt::POS_16 | ge::vt::THROUGH;
 
-struct Drop {
-    int32_t list;
-    uint32_t pc;
-    std::string message;
-};
+using Drop = GameHost::Drop;
 
-// A host owning RAM and VRAM, writing lists like a game (tests/api_embed.cpp's shape), recording
-// what the drop callback tells it.
-struct DefectHost {
-    std::vector<uint8_t> ram = std::vector<uint8_t>(kRamSize), vram = std::vector<uint8_t>(0x200000);
-    ge::Memory mem{ram.data(), kRamSize, vram.data()};
-    ge2gl_context* h = nullptr;
-    ge2gl_status status = GE2GL_ERR_BACKEND;
-    uint32_t arena = 0x08100000;
-    std::vector<Drop> drops;
-
+// The game-like host (tests/api_embed_host.h) with 1 MiB per list (room for big vertex arrays)
+// and no vram_dirty callback: lazy write-back ranges stay with ge2gl until a sync asks for them.
+struct DefectHost : GameHost {
     template <class Tweak>
-    DefectHost(int backend, Tweak tweak) {
-        ge2gl_config cfg;
-        ge2gl_config_init(&cfg);
-        cfg.ram = ram.data();
-        cfg.ram_size = kRamSize;
-        cfg.vram = vram.data();
-        cfg.backend = backend;
-        cfg.callbacks.user = this;
-        cfg.drop = [](void* u, int32_t id, uint32_t pc, const char* m) {
-            static_cast<DefectHost*>(u)->drops.push_back({id, pc, m});
-        };
-        tweak(cfg);
-        status = ge2gl_create(&cfg, &h);
+    DefectHost(int backend, Tweak tweak)
+        : GameHost(backend, [&](ge2gl_config& c) {
+              c.vram_dirty = nullptr;
+              tweak(c);
+          }) {
+        arena = 0x08100000;
+        arenaStep = 0x100000;
     }
     explicit DefectHost(int backend) : DefectHost(backend, [](ge2gl_config&) {}) {}
-    ~DefectHost() { ge2gl_destroy(h); }
-
-    // A list at the next arena (1 MiB apart: room for big vertex arrays): 8888 frame buffer at
-    // VRAM 0, stride 512, then `body`, FINISH.
-    template <class Body>
-    uint32_t list(Body body) {
-        ge::ListBuilder b(&mem, arena);
-        arena += 0x100000;
-        b.drawBuffer(ge::GE_FORMAT_8888, 0, 512);
-        b.scissor(0, 0, 480, 272);
-        b.region(0, 0, 480, 272);
-        body(b);
-        b.finish();
-        return b.placeList();
-    }
-    ge2gl_status enqueue(uint32_t listAddr) {
-        int32_t id = -1;
-        return ge2gl_list_enqueue(h, listAddr, 0, -1, nullptr, &id);
-    }
-    ge2gl_status drawSync() {
-        int32_t s = -1;
-        return ge2gl_draw_sync(h, GE2GL_SYNC_WAIT, &s);
-    }
-    ge2gl_status draw(uint32_t listAddr) {
-        if (ge2gl_status st = enqueue(listAddr); st != GE2GL_OK) return st;
-        return drawSync();
-    }
-    uint32_t hostPixel(int x, int y) const {
-        uint32_t v;
-        std::memcpy(&v, &vram[(size_t(y) * 512 + size_t(x)) * 4], 4);
-        return v;
-    }
-    void pokePixel(int x, int y, uint32_t abgr) { std::memcpy(&vram[(size_t(y) * 512 + size_t(x)) * 4], &abgr, 4); }
-    ge2gl_stats stats() const {
-        ge2gl_stats s{};
-        s.struct_size = sizeof s;
-        EXPECT_EQ(ge2gl_get_stats(h, &s), GE2GL_OK);
-        return s;
-    }
-    static void clearTo(ge::ListBuilder& b, uint32_t abgr) { b.clear(ge::CLEAR_COLOR | ge::CLEAR_STENCIL, abgr, 0); }
 };
 
 uint32_t rgb(uint32_t abgr) { return abgr & 0xFFFFFF; }
