@@ -26,9 +26,6 @@ namespace ge::geo {
 
 namespace {
 
-// Guard against absurd division counts (255·252 per direction would be 4·10^9 vertices).
-constexpr u64 kMaxOutputVertices = 1u << 21;
-
 struct Basis1D {
     u32 first = 0;      // first control point index in this direction
     float w[4] = {};    // basis values
@@ -286,9 +283,10 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     const u32 divU = std::max<u32>(p.divU, 1), divV = std::max<u32>(p.divV, 1);
     const u32 patchesU = p.spline ? ucount - 3 : (ucount - 1) / 3;
     const u32 patchesV = p.spline ? vcount - 3 : (vcount - 1) / 3;
-    const u64 total = p.spline ? u64(patchesU * divU + 1) * (patchesV * divV + 1)
-                               : u64(patchesU) * patchesV * (divU + 1) * (divV + 1);
-    if (total > kMaxOutputVertices) return fail(err, "patch too large: %u x %u divisions", divU, divV);
+    // Guard against absurd division counts (255·252 per direction would be 4·10^9 vertices).
+    const u64 total = patchOutputVertices(p);
+    if (total > kMaxPatchOutputVertices)
+        return fail(err, "patch too large: %u x %u divisions", divU, divV);
 
     // Control points.
     VertexReader reader(mem, st, p.vtype);

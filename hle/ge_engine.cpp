@@ -394,17 +394,13 @@ void GeEngine::doPatch(u32 word) {
         const u64 spans = pkt.spline ? (points > 3 ? points - 3 : 1) : std::max<u32>(1, (points - 1) / 3);
         return spans * div + 1;
     };
-    const u64 generated = std::min<u64>(side(pkt.ucount, pkt.divU) * side(pkt.vcount, pkt.divV), u64(1) << 21);
+    const u64 generated = std::min<u64>(side(pkt.ucount, pkt.divU) * side(pkt.vcount, pkt.divV), kMaxPatchOutputVertices);
     if (!chargeDraw(getime::perVertexCost(state_) * generated)) return;
     const char* what = pkt.spline ? "SPLINE" : "BEZIER";
     if (pkt.ucount >= 4 && pkt.vcount >= 4) {
-        // The tessellator's output cap (geometry/spline.cpp, 2^21 vertices): a larger surface is
-        // not drawn at all. Its size as the tessellator counts it.
-        const u64 patchesU = pkt.spline ? pkt.ucount - 3 : (pkt.ucount - 1) / 3;
-        const u64 patchesV = pkt.spline ? pkt.vcount - 3 : (pkt.vcount - 1) / 3;
-        const u64 total = pkt.spline ? (patchesU * pkt.divU + 1) * (patchesV * pkt.divV + 1)
-                                     : patchesU * patchesV * (pkt.divU + 1) * (pkt.divV + 1);
-        if (total > (u64(1) << 21)) {
+        // Past the tessellator's output cap a surface is not drawn at all.
+        const u64 total = patchOutputVertices(pkt);
+        if (total > kMaxPatchOutputVertices) {
             char buf[200];
             std::snprintf(buf, sizeof buf,
                           "%s of %ux%u control points at %ux%u divisions makes %llu vertices, past the tessellator's "

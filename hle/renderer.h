@@ -38,6 +38,18 @@ struct PatchPacket {
     u32 vtype = 0, vertexAddr = 0, indexAddr = 0;
 };
 
+// The tessellator's output cap (geometry/spline.cpp): a surface past it is not drawn.
+constexpr u64 kMaxPatchOutputVertices = u64(1) << 21;
+// The vertices the tessellator generates for a patch of at least 4×4 control points: Bezier
+// patches every 3 control points, each (div+1)² vertices; a spline surface of (spans·div + 1)
+// vertices a side, a span for every point after the third (manual §5.2). Divisions 0 count as 1.
+inline u64 patchOutputVertices(const PatchPacket& p) {
+    const u64 divU = p.divU ? p.divU : 1, divV = p.divV ? p.divV : 1;
+    const u64 patchesU = p.spline ? p.ucount - 3 : (p.ucount - 1) / 3;
+    const u64 patchesV = p.spline ? p.vcount - 3 : (p.vcount - 1) / 3;
+    return p.spline ? (patchesU * divU + 1) * (patchesV * divV + 1) : patchesU * patchesV * (divU + 1) * (divV + 1);
+}
+
 // A block transfer (CMD_XSTART), fully resolved. Strides and positions in pixels.
 struct TransferPacket {
     u32 src = 0, srcStride = 0, srcX = 0, srcY = 0;
