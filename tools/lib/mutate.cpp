@@ -118,7 +118,10 @@ bool mutatePayloadBytes(dump::Dump& d, MutationRng& rng, std::string& step) {
     } else {
         const u32 n = u32(1 + rng.below(16));
         for (u32 k = 0; k < n; ++k) p[rng.below(r.size)] = u8(rng.next());
-        step += " " + std::to_string(n) + " random bytes";
+        // Appended piece by piece: GCC 12's -Wrestrict misreads `" " + std::to_string(n)` (GCC bug 105329).
+        step += ' ';
+        step += std::to_string(n);
+        step += " random bytes";
     }
     return true;
 }
