@@ -176,9 +176,8 @@ ge2gl_status guarded(ge2gl_context* h, F&& f) {
 void refreshSnapshot(ge2gl_context* h);
 // The GE thread, back from the backend with the lock: hands over what light calls deferred.
 void applyDeferred(ge2gl_context* h);
-// For light calls: memory written / the host may have written, told to the backend now or, while
-// a draw is in progress or GL is out of reach, when it can be.
-void tellWritten(ge2gl_context* h, Call& c, ge::u32 addr, ge::u32 size);
+// For light calls: the host may have written, told to the backend now or, while a draw is in
+// progress, when it returns (applyDeferred).
 void tellHostMayHaveWritten(ge2gl_context* h, bool frameBuffers);
 // Lazy write-back: hands newly drawn VRAM ranges to config.vram_dirty (lock released).
 void announceDirty(ge2gl_context* h);

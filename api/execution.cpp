@@ -20,6 +20,12 @@ std::string hex8(u32 v) {
     return b;
 }
 
+// A run stopped at a draw cut at config.run_budget_us (SceRunState::TimeLimit): what and where.
+std::string timeCutMessage(const ge2gl_context* h, u32 pc) {
+    return "the draw before 0x" + hex8(pc) + " took more than config.run_budget_us of GE time and was cut there (" +
+           h->lastDrop + "); the list goes on after it at the next call";
+}
+
 ge2gl_interrupt convert(const ge::SceInterrupt& in) {
     ge2gl_interrupt out{};
     out.list_id = in.listId;
@@ -70,14 +76,6 @@ void applyDeferred(ge2gl_context* h) {
     }
     // GL_CURRENT's writes from other threads wait for GL (the next call that enters it).
     if (!h->pendingWrites.empty() && (!h->isGl() || h->runGl)) applyPendingWrites(h);
-}
-
-void tellWritten(ge2gl_context* h, Call& c, u32 addr, u32 size) {
-    if (h->rendering || !c.glReachable()) {
-        h->pendingWrites.emplace_back(addr, size);
-        return;
-    }
-    h->engine->renderer()->memoryWritten(addr, size);
 }
 
 void tellHostMayHaveWritten(ge2gl_context* h, bool frameBuffers) {
@@ -336,8 +334,7 @@ bool waitUntil(ge2gl_context* h, Call& c, const std::function<bool()>& done, std
             used += r.commands;
             if (r.state == ge::SceRunState::TimeLimit) {
                 h->timeCut = true;
-                why = "a draw before 0x" + hex8(r.pc) + " took more than config.run_budget_us of GE time and was cut " +
-                      "there (" + h->lastDrop + "); the list goes on after it";
+                why = timeCutMessage(h, r.pc);
                 return false;
             }
             if (r.commands == 0 && !done() && h->sce->canProgress() && !h->held) {
@@ -435,9 +432,7 @@ ge2gl_status runFor(ge2gl_context* h, uint64_t max_commands, uint64_t tick, ge2g
     }
     ge2gl_status status = GE2GL_OK;
     if (r.state == ge::SceRunState::TimeLimit) {
-        status = c.error(GE2GL_ERR_TIME_BUDGET, "the draw before 0x" + hex8(r.pc) +
-                                                    " took more than config.run_budget_us of GE time and was cut there (" +
-                                                    h->lastDrop + "); the list goes on after it at the next call");
+        status = c.error(GE2GL_ERR_TIME_BUDGET, timeCutMessage(h, r.pc));
         r.state = ge::SceRunState::Budget;
     }
     if (out) {

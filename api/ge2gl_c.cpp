@@ -259,7 +259,7 @@ ge2gl_status ge2gl_mem_write(ge2gl_context* h, uint32_t addr, const void* src, u
         if (ge2gl_status s = memCheck(c, h, addr, size); s != GE2GL_OK) return s;
         if (h->rendering || !c.glReachable()) {
             h->mem->write(addr, src, size);
-            tellWritten(h, c, addr, size);
+            h->pendingWrites.emplace_back(addr, size);  // applyDeferred / the next GL call hands it over
             return GE2GL_OK;
         }
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
@@ -302,7 +302,7 @@ ge2gl_status ge2gl_mem_written(ge2gl_context* h, uint32_t addr, uint32_t size) {
         Call c(h, writeKind(addr));
         if (ge2gl_status s = memCheck(c, h, addr, size); s != GE2GL_OK) return s;
         if (h->rendering || !c.glReachable()) {
-            tellWritten(h, c, addr, size);
+            h->pendingWrites.emplace_back(addr, size);  // applyDeferred / the next GL call hands it over
             return GE2GL_OK;
         }
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
