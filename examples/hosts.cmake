@@ -34,7 +34,7 @@ if(GE2GL_BUILD_TESTS)
                      ${CMAKE_CURRENT_BINARY_DIR}/egl_host_render_to_texture.ppm)
     # 77: no EGL surfaceless platform / GL 3.3 core context on this machine.
     set_tests_properties(example_egl_host PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)
-    if(GE2GL_SANITIZE)
+    if(GE2GL_SANITIZED)
       # Mesa's EGL keeps process-lifetime allocations that LeakSanitizer cannot attribute in the
       # host's own set-up; the library's leak checks on these paths run in test_api.
       set_tests_properties(example_egl_host PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
