@@ -50,6 +50,13 @@ public:
         u32 a = normalize(addr);
         return a >= kVramBase && a < kVramMirrorsEnd;
     }
+    // The address drawing sees: bits 31..28 dropped and the four VRAM mirrors folded onto the
+    // linear 2 MiB (all mirrors are the same bytes for drawing, above). Both backends key their
+    // overlap tests (texture caches, render targets) on it.
+    static u32 drawingAddress(u32 addr) {
+        const u32 a = normalize(addr);
+        return isVram(a) ? kVramBase | (a & (kVramSize - 1)) : a;
+    }
     static bool isRam(u32 addr, u32 ramSize) {
         u32 a = normalize(addr);
         return a >= kRamBase && a - kRamBase < ramSize;

@@ -8,12 +8,6 @@
 
 namespace ge::soft {
 
-u32 canonicalAddress(u32 addr) {
-    const u32 a = Memory::normalize(addr);
-    if (Memory::isVram(a)) return Memory::kVramBase + ((a - Memory::kVramBase) & (Memory::kVramSize - 1));
-    return a;
-}
-
 TextureCache::TextureCache(size_t maxBytes) : maxBytes_(maxBytes) {}
 
 size_t TextureCache::KeyHash::operator()(const Key& k) const {
@@ -75,7 +69,7 @@ std::shared_ptr<const DecodedLevel> TextureCache::level(const GeState& st, const
     Entry e;
     e.data = decoded;
     e.hash = hash;
-    e.begin = canonicalAddress(info.addr);
+    e.begin = Memory::drawingAddress(info.addr);
     const u64 end = u64(e.begin) + textureLevelBytes(st, lvl);
     e.end = u32(std::min<u64>(end, 0xFFFFFFFFull));
     e.usesClut = isClut;
@@ -115,7 +109,7 @@ void TextureCache::invalidate(u32 addr, u32 size) {
         for (auto& [k, e] : entries_) e.suspect = true;
         return;
     }
-    const u64 begin = canonicalAddress(addr);
+    const u64 begin = Memory::drawingAddress(addr);
     const u64 end = begin + size;
     for (auto& [k, e] : entries_)
         if (e.begin < end && begin < e.end) e.suspect = true;

@@ -81,8 +81,4 @@ private:
     TextureCacheStats stats_;
 };
 
-// Address normalisation used for overlap tests: bits 31..28 dropped; VRAM mirrors folded onto the
-// linear 2 MiB (drawing sees all mirrors as the same bytes, memory.h).
-u32 canonicalAddress(u32 addr);
-
 }  // namespace ge::soft

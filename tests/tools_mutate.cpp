@@ -45,7 +45,9 @@ TEST(Mutate, SeedsDifferAndReachEveryKind) {
         const std::vector<u8> f = tools::mutantFile(m);
         dump::Dump back;
         std::string err;
-        if (!dump::loadDumpFromMemory(f.data(), f.size(), back, err)) EXPECT_FALSE(err.empty());
+        if (!dump::loadDumpFromMemory(f.data(), f.size(), back, err)) {
+            EXPECT_FALSE(err.empty());
+        }
     }
     EXPECT_GE(files.size(), 195u);
     EXPECT_GT(truncated, 0);

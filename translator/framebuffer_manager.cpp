@@ -11,12 +11,6 @@
 
 namespace ge::gl {
 
-u32 vramLinear(u32 addr) {
-    const u32 a = Memory::normalize(addr);
-    if (a >= Memory::kVramBase && a < Memory::kVramMirrorsEnd) return Memory::kVramBase | (a & (Memory::kVramSize - 1));
-    return a;
-}
-
 namespace {
 constexpr u32 kVramEnd = Memory::kVramBase + Memory::kVramSize;
 
@@ -197,7 +191,7 @@ Target* FramebufferManager::containing(u32 linearAddr) {
 
 const Target* FramebufferManager::findColor(u32 addr, u32 stride, GeBufferFormat fmt) {
     verifySuspects();
-    addr = vramLinear(addr);
+    addr = Memory::drawingAddress(addr);
     for (const auto& t : targets_)
         if (!t->depth && t->addr == addr && t->stride == stride && t->fmt == fmt && t->rowsValid > 0) return t.get();
     return nullptr;
@@ -232,7 +226,7 @@ void FramebufferManager::destroy(Target* t) {
 Target* FramebufferManager::colorTarget(u32 addr, u32 stride, GeBufferFormat fmt, int rows) {
     if (stride == 0) return nullptr;
     verifySuspects();
-    addr = vramLinear(addr);
+    addr = Memory::drawingAddress(addr);
     Target* t = find(false, addr, stride, fmt);
     if (!t) t = create(false, addr, stride, fmt);
     ensureRows(*t, rows);
@@ -242,7 +236,7 @@ Target* FramebufferManager::colorTarget(u32 addr, u32 stride, GeBufferFormat fmt
 Target* FramebufferManager::depthTarget(u32 addr, u32 stride, int rows) {
     if (stride == 0) return nullptr;
     verifySuspects();
-    addr = vramLinear(addr);
+    addr = Memory::drawingAddress(addr);
     Target* t = find(true, addr, stride, GE_FORMAT_565);
     if (!t) t = create(true, addr, stride, GE_FORMAT_565);
     ensureRows(*t, rows);
@@ -577,14 +571,14 @@ void FramebufferManager::writeBack(Target& t, u32 lo, u32 hi) {
 }
 
 void FramebufferManager::syncRange(u32 addr, u32 size) {
-    const u32 begin = vramLinear(addr);
+    const u32 begin = Memory::drawingAddress(addr);
     const u32 end = size ? begin + size : ~0u;
     for (auto& t : targets_)
         if (!t->dirty.empty() && t->addr < end && t->end() > begin) writeBack(*t, begin, end);
 }
 
 bool FramebufferManager::dirtyOverlaps(u32 addr, u32 size) const {
-    const u32 begin = vramLinear(addr);
+    const u32 begin = Memory::drawingAddress(addr);
     const u32 end = size ? begin + size : ~0u;
     for (const auto& t : targets_)
         if (!t->dirty.empty() && t->addr < end && t->end() > begin) return true;
@@ -592,7 +586,7 @@ bool FramebufferManager::dirtyOverlaps(u32 addr, u32 size) const {
 }
 
 void FramebufferManager::memoryWritten(u32 addr, u32 size) {
-    const u32 begin = vramLinear(addr);
+    const u32 begin = Memory::drawingAddress(addr);
     if (begin < Memory::kVramBase || begin >= kVramEnd) return;
     const u32 end = size ? std::min<u32>(begin + size, kVramEnd) : kVramEnd;
     for (auto& t : targets_)

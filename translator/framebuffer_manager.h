@@ -70,9 +70,6 @@ struct Target {
     u32 end() const { return addr + u32(rowsValid) * stride * bpp(); }
 };
 
-// Linear VRAM address for any of the four mirrors (drawing treats them as the same bytes, docs/ge-rules.md §7.3).
-u32 vramLinear(u32 addr);
-
 class FramebufferManager {
 public:
     // `scale`: render scale N, 1–8 (texels per PSP pixel along each axis).

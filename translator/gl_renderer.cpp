@@ -53,7 +53,7 @@ shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
 
 // True when the depth buffer rows a draw needs share bytes with colour target t (linear VRAM).
 bool depthOverlapsColor(const Target& t, u32 depthAddr, u32 depthStride, int rows) {
-    const u64 begin = vramLinear(depthAddr);
+    const u64 begin = Memory::drawingAddress(depthAddr);
     const u64 end = begin + u64(std::clamp(rows, 1, kTargetSize)) * depthStride * 2;
     return begin < t.end() && end > t.addr;
 }
@@ -452,12 +452,12 @@ private:
         s.fs = keys.fs;
         s.ff = keys.ff;
         shadergen::uniformsFromState(st, s.u);
-        s.colorAddr = vramLinear(st.framebufAddr());
+        s.colorAddr = Memory::drawingAddress(st.framebufAddr());
         s.colorStride = st.framebufStride();
         s.colorFormat = st.framebufFormat();
         s.useDepth = (keys.ff.usesDepth || keys.fs.depthRead != shadergen::DepthRead::None) ? 1 : 0;
         if (s.useDepth) {
-            s.depthAddr = vramLinear(st.depthbufAddr());
+            s.depthAddr = Memory::drawingAddress(st.depthbufAddr());
             s.depthStride = st.depthbufStride();
         }
         // Scissor ∩ REGION2, inclusive (ge-rules.md §8.6), limited to the buffer width and target size.
@@ -479,7 +479,7 @@ private:
             // must be in VRAM before the texture is decoded.
             u32 srcBegin, srcEnd;
             TextureCache::sourceRange(st, levels, srcBegin, srcEnd);
-            const u32 lin = vramLinear(srcBegin);
+            const u32 lin = Memory::drawingAddress(srcBegin);
             const u32 linEnd = lin + (srcEnd - srcBegin);
             if (!geo_.empty() && batchOverlaps(lin, linEnd)) flush();
             const u64 wb = fb_.writeBacks();
@@ -567,7 +567,7 @@ private:
             int x, y;
         };
         auto locate = [&](u32 base, u32 stride, u32 x, u32 y, Side& out) {
-            const u32 begin = vramLinear(base + (y * stride + x) * t.bpp);
+            const u32 begin = Memory::drawingAddress(base + (y * stride + x) * t.bpp);
             Target* tg = fb_.containing(begin);
             if (!tg || tg->stride != stride || tg->bpp() != t.bpp) return false;
             const u32 px = (begin - tg->addr) / t.bpp;
@@ -597,7 +597,7 @@ private:
     // indices per pixel), swizzled textures or the draw's own colour target (a feedback loop):
     // those go through VRAM.
     bool sampleTarget(const GeState& st, Setup& s) {
-        const Target* t = fb_.containing(vramLinear(st.textureAddr(0)));
+        const Target* t = fb_.containing(Memory::drawingAddress(st.textureAddr(0)));
         if (!t) return false;
         const u32 tf = st.TPF_format();
         const bool fb32 = t->fmt == GE_FORMAT_8888;
@@ -609,7 +609,7 @@ private:
         else if (fb32 ? (tf == GE_TFMT_CLUT32 || tf == GE_TFMT_8888) : (tf <= GE_TFMT_4444 || tf == GE_TFMT_CLUT16))
             perPixel = 1;
         const bool clut = tf >= GE_TFMT_CLUT4 && tf <= GE_TFMT_CLUT32;
-        const u32 off = vramLinear(st.textureAddr(0)) - t->addr;
+        const u32 off = Memory::drawingAddress(st.textureAddr(0)) - t->addr;
         if (!perPixel || s.fs.texMip || st.TMODE_swizzle() || st.textureBufWidth(0) != t->stride * perPixel ||
             off % t->bpp() ||
             (t->addr == s.colorAddr && t->stride == s.colorStride)) {
@@ -617,7 +617,7 @@ private:
             return false;
         }
         // Pending draws into the source target first (the batch may be drawing into it).
-        const u32 lin = vramLinear(st.textureAddr(0));
+        const u32 lin = Memory::drawingAddress(st.textureAddr(0));
         if (!geo_.empty() && batchOverlaps(lin, lin + 1)) flush();
         const u32 px = off / t->bpp();
         s.fs.texTarget = u8(1 + t->fmt);
