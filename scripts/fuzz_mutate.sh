@@ -17,7 +17,7 @@
 # runs, failures, slowest run and largest peak RSS. A run over a limit is run again alone (no other
 # run beside it) before it counts, so that machine load is not reported as a finding; verdicts:
 # ok, crash, time, memory, output (more than one message line). Exit status 1 when any run failed.
-# Short mode for CI: -n 30.
+# The full test tier (scripts/test.sh) runs -n 30.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 count=1000 first=1 jobs=2 backends=soft,gl,hw2 dumpsDir=$root/../shared/frametests/dumps build=$root/build
