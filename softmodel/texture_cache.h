@@ -2,26 +2,21 @@
 // Decoded-texture cache of the software model (the TextureCache of softmodel/pixel.h).
 //
 // Each texture level is decoded to RGBA8888 once (hle/texture_decoder.h) and reused by later
-// draws. Key: level address, format, size, buffer width, swizzle, CLUT register (+ level for
-// multi-CLUT) — everything decodeTextureLevel reads besides memory and the palette. Validity is
-// driven by events, with a full content hash as the fallback (style-anchors §7.11, §8.6):
-//   * invalidate(addr, size): guest memory was written (transfers, CPU/dump writes, drawing into
-//     VRAM); overlapping entries become "suspect";
-//   * clutChanged(): palette RAM reloaded; entries of CLUT formats become suspect;
-//   * a suspect entry is re-hashed (hashTextureLevel: source bytes + palette bytes used) when next
-//     used, and reused if the content is unchanged, else decoded again.
+// draws. When a decoded level is still valid — key, content hashes, invalidation by memory writes
+// and palette reloads, eviction budget — is texcache/texture_validity.h's job, shared with the GL
+// translator; this cache keeps the decoded texels, one entry per level.
 // Decoded data is handed out as shared_ptr<const>, so a draw keeps its textures alive and
 // read-only for its shading threads even if the cache drops or replaces the entry meanwhile.
 // All member functions are thread-safe (one mutex; they run per draw, never per pixel).
 #pragma once
 #include <memory>
 #include <mutex>
-#include <unordered_map>
 #include <vector>
 
 #include "hle/ge_state.h"
 #include "hle/memory.h"
 #include "hle/types.h"
+#include "texcache/texture_validity.h"
 
 namespace ge::soft {
 
@@ -52,33 +47,9 @@ public:
     TextureCacheStats stats() const;
 
 private:
-    struct Key {
-        u32 addr = 0, bufw = 0, width = 0, height = 0;
-        u32 clut = 0;     // CLUT register argument for CLUT formats, else 0
-        u8 format = 0, swizzle = 0, level = 0xFF;  // level only where the decode depends on it
-        bool operator==(const Key&) const = default;
-    };
-    struct KeyHash {
-        size_t operator()(const Key& k) const;
-    };
-    struct Entry {
-        std::shared_ptr<const DecodedLevel> data;
-        u64 hash = 0;
-        u32 begin = 0, end = 0;  // canonical source byte range [begin, end)
-        bool usesClut = false;
-        bool suspect = false;
-        u64 lastUse = 0;
-        size_t bytes = 0;
-    };
-
-    void evictLocked();
-
+    using Cache = texcache::ValidatedCache<std::shared_ptr<const DecodedLevel>>;
     mutable std::mutex mutex_;
-    std::unordered_map<Key, Entry, KeyHash> entries_;
-    size_t maxBytes_;
-    size_t bytes_ = 0;
-    u64 clock_ = 0;
-    TextureCacheStats stats_;
+    Cache cache_;
 };
 
 }  // namespace ge::soft

@@ -6,22 +6,25 @@
 #include <cstring>
 
 #include "hle/texture_decoder.h"
-#include "shadergen/shader_keys.h"
 
 namespace ge::gl {
 
 namespace {
-constexpr size_t kMaxEntries = 512;
-}
+// What GL textures may hold: the entries and the atlas bytes, least recently used going first.
+constexpr texcache::Budget kBudget{size_t(256) << 20, 512};
+}  // namespace
 
-size_t TextureCache::KeyHash::operator()(const Key& k) const { return size_t(shadergen::hashBytes(&k, sizeof k)); }
+TextureCache::TextureCache(const GlContext& ctx) : ctx_(ctx), cache_(kBudget) {}
 
 TextureCache::~TextureCache() { clear(); }
 
+void TextureCache::drop(TextureEntry& e) {
+    if (e.tex) ctx_.f().DeleteTextures(1, &e.tex);
+    e.tex = 0;
+}
+
 void TextureCache::clear() {
-    for (auto& kv : entries_)
-        if (kv.second.tex) ctx_.f().DeleteTextures(1, &kv.second.tex);
-    entries_.clear();
+    cache_.clear([this](Cache::Entry& e) { drop(e.payload); });
 }
 
 void TextureCache::sourceRange(const GeState& st, int levelCount, u32& begin, u32& end) {
@@ -38,62 +41,23 @@ void TextureCache::sourceRange(const GeState& st, int levelCount, u32& begin, u3
 
 const TextureEntry* TextureCache::get(const Memory& mem, const GeState& st, int levelCount, u64 generation,
                                       u64 clutHash) {
-    levelCount = std::clamp(levelCount, 1, 8);
-    Key key;
-    std::memset(static_cast<void*>(&key), 0, sizeof key);
-    for (int l = 0; l < levelCount; ++l) {
-        key.addr[l] = st.textureAddr(l);
-        key.bufw[l] = st.textureBufWidth(l);
-        key.size[l] = st.TSIZE_wlog(l) | (st.TSIZE_hlog(l) << 8);
+    levelCount = std::clamp(levelCount, 1, texcache::kMaxLevels);
+    if (generation != generation_) {
+        cache_.invalidate(0, 0);
+        generation_ = generation;
     }
-    key.format = st.TPF_format();
-    key.swizzle = st.TMODE_swizzle();
-    key.levels = u32(levelCount);
-    const bool clut = key.format >= GE_TFMT_CLUT4 && key.format <= GE_TFMT_CLUT32;
-    if (clut) {
-        key.clut = st.op(GE_CMD_CLUT);
-        key.multiClut = st.TMODE_multiclut();
-        key.clutHash = clutHash;
+    const texcache::TextureKey key = texcache::textureKey(st, 0, levelCount, clutHash);
+    auto onDrop = [this](Cache::Entry& e) { drop(e.payload); };
+    auto [entry, use] = cache_.find(key, st, mem, 0, levelCount, onDrop);
+    if (use == Cache::Use::Reuse) {
+        ++stats_.hits;
+        return &entry.payload;
     }
-    ++useCounter_;
-    auto it = entries_.find(key);
-    if (it == entries_.end()) {
-        if (entries_.size() >= kMaxEntries) {
-            // Drop the least recently used half (simple, bounded).
-            std::vector<u64> uses;
-            for (auto& kv : entries_) uses.push_back(kv.second.lastUse);
-            std::nth_element(uses.begin(), uses.begin() + long(uses.size() / 2), uses.end());
-            const u64 cut = uses[uses.size() / 2];
-            for (auto e = entries_.begin(); e != entries_.end();) {
-                if (e->second.lastUse <= cut) {
-                    ctx_.f().DeleteTextures(1, &e->second.tex);
-                    e = entries_.erase(e);
-                } else {
-                    ++e;
-                }
-            }
-        }
-        it = entries_.emplace(key, TextureEntry{}).first;
-        TextureEntry& e = it->second;
-        sourceRange(st, levelCount, e.rangeBegin, e.rangeEnd);
-        upload(mem, st, e, levelCount);
-        e.checkedGen = generation;
-        e.lastUse = useCounter_;
-        return &e;
-    }
-    TextureEntry& e = it->second;
-    e.lastUse = useCounter_;
-    if (e.checkedGen != generation) {
-        bool same = true;
-        for (int l = 0; l < levelCount && same; ++l) same = hashTextureLevel(mem, st, l) == e.hashes[l];
-        e.checkedGen = generation;
-        if (!same) {
-            upload(mem, st, e, levelCount);
-            return &e;
-        }
-    }
-    ++stats_.hits;
-    return &e;
+    upload(mem, st, entry.payload, levelCount);
+    size_t bytes = 0;
+    for (int l = 0; l < levelCount; ++l) bytes += size_t(entry.payload.placement[l][1]) * entry.payload.placement[l][2] * 4;
+    cache_.setBytes(entry, bytes, onDrop);
+    return &entry.payload;
 }
 
 void TextureCache::upload(const Memory& mem, const GeState& st, TextureEntry& e, int levelCount) {
@@ -109,7 +73,6 @@ void TextureCache::upload(const Memory& mem, const GeState& st, TextureEntry& e,
         e.placement[l][3] = 0;
         width = std::max(width, w);
         height += h;
-        e.hashes[l] = hashTextureLevel(mem, st, l);
     }
     atlas_.resize(size_t(width) * size_t(height));
     for (int l = 0; l < levelCount; ++l) {

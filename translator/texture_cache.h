@@ -6,19 +6,19 @@
 // texture; the fragment shader samples it with texelFetch and does wrap/clamp and filtering
 // itself (exact 4-bit weights, docs/ge-rules.md §8.10).
 //
-// Invalidation contract (style-anchors §7.11): an entry is keyed by the texture registers and the
-// palette contents, and validated by a full hash of its source bytes (hashTextureLevel, which
-// includes the palette bytes used). Validation runs only when the renderer's memory generation
-// changed since the entry was last checked — the generation advances on TFLUSH, CLOAD, block
-// transfers, memoryWritten and every write-back of a render target to VRAM. No sampling, no
-// heuristics: a changed byte always re-decodes.
+// When an entry is still valid (key, content hashes, eviction budget) is texcache/texture_validity.h's
+// job, shared with the software model. This cache adds the palette contents' hash to the key and
+// is told of memory changes by a generation: the renderer's memory generation advances on TFLUSH,
+// CLOAD, block transfers, memoryWritten and every write-back of a render target to VRAM, and when
+// it has moved since the last lookup every entry is re-hashed against its source bytes when next
+// used. No sampling, no heuristics: a changed byte always re-decodes.
 #pragma once
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "hle/ge_state.h"
 #include "hle/memory.h"
+#include "texcache/texture_validity.h"
 #include "translator/gl_context.h"
 
 namespace ge::gl {
@@ -27,10 +27,6 @@ struct TextureEntry {
     GLuint tex = 0;
     int levels = 1;
     int placement[8][4] = {};  // atlas y offset, stored width, height (≤ 512), 0 (u_texLevels takes the y)
-    u64 hashes[8] = {};
-    u32 rangeBegin = 0, rangeEnd = 0;  // normalised source bytes of all levels (for sync)
-    u64 checkedGen = ~u64(0);
-    u64 lastUse = 0;
 };
 
 struct TextureCacheStats {
@@ -39,7 +35,7 @@ struct TextureCacheStats {
 
 class TextureCache {
 public:
-    explicit TextureCache(const GlContext& ctx) : ctx_(ctx) {}
+    explicit TextureCache(const GlContext& ctx);
     ~TextureCache();
     // The source byte range of the texture the state selects (levels 0..levelCount−1).
     static void sourceRange(const GeState& st, int levelCount, u32& begin, u32& end);
@@ -50,25 +46,15 @@ public:
     void clear();
 
 private:
-    struct Key {
-        u32 addr[8], bufw[8], size[8];
-        u32 format, swizzle, clut, multiClut, levels;
-        u64 clutHash;
-    };
-    struct KeyHash {
-        size_t operator()(const Key& k) const;
-    };
-    struct KeyEq {
-        bool operator()(const Key& a, const Key& b) const { return std::memcmp(&a, &b, sizeof a) == 0; }
-    };
+    using Cache = texcache::ValidatedCache<TextureEntry>;
     void upload(const Memory& mem, const GeState& st, TextureEntry& e, int levelCount);
-
+    void drop(TextureEntry& e);
     const GlContext& ctx_;
-    std::unordered_map<Key, TextureEntry, KeyHash, KeyEq> entries_;
+    Cache cache_;
+    u64 generation_ = ~u64(0);  // the renderer's memory generation at the last lookup
     std::vector<u32> scratch_;
     std::vector<u32> atlas_;
     TextureCacheStats stats_;
-    u64 useCounter_ = 0;
 };
 
 }  // namespace ge::gl
