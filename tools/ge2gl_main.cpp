@@ -242,16 +242,52 @@ int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& 
     return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// Every option's storage and the subcommands, declared in the order --help lists them.
+struct Cli {
     CLI::App app{"ge2gl — PSP GE frame-dump replay, rendering and comparison"};
-    app.require_subcommand(1);
-    app.set_version_flag("--version", "ge2gl 0.1.0");
-
     tools::RenderOptions ropt;
     std::string replayTiming = "ppsspp";
-    auto addBackendOpts = [&](CLI::App* sc) {
+    std::optional<std::string> skipDraws, onlyDraws;  // --skip / --only (tools/lib/draw_select.h)
+    std::vector<std::string> infoFiles;
+    bool infoTiming = false;
+    std::string disasmFile;
+    std::string renderFile, outPng, depthOut, vramOut;
+    bool stats = false;
+    std::vector<std::string> cmpFiles;
+    std::string refDir, refBackend, jsonPath, diffDir;
+    double maxMse = -1;
+    std::string shardText;
+    bool jsonNoTimes = false;
+    std::vector<std::string> benchFiles;
+    int repeat = 3;
+    tools::StepOptions stepOpt;
+    std::string stepFile;
+    bool nullGl = false, warm = false;
+    std::string blameFile;
+    tools::BlameOptions blameOpt;
+    std::string bisectFile;
+    tools::BisectOptions bisectOpt;
+    std::vector<std::string> mergeFiles;
+    std::string mergeOut;
+    tools::FuzzOptions fuzzOpt;
+    tools::ReportArgs reportArgs;
+    CLI::App *info = nullptr, *disasm = nullptr, *render = nullptr, *compare = nullptr, *step = nullptr,
+             *bench = nullptr, *blame = nullptr, *bisect = nullptr, *fuzz = nullptr, *merge = nullptr,
+             *report = nullptr;
+    CLI::Option* shardOpt = nullptr;
+    tools::Shard shard;  // --shard i/n, parsed
+
+    Cli() {
+        app.require_subcommand(1);
+        app.set_version_flag("--version", "ge2gl 0.1.0");
+        declareInspect();
+        declareCompare();
+        declareStepBench();
+        declareBlameBisect();
+        declareFuzzMergeReport();
+    }
+
+    void addBackendOpts(CLI::App* sc) {
         sc->add_option("--replay-timing", replayTiming,
                        "when the GE runs during replay: ppsspp (as PPSSPP's player: at its sync points; "
                        "dumps PPSSPP recorded) | eager (after every REGISTERS block; dumps from other tools)")
@@ -279,170 +315,166 @@ int main(int argc, char** argv) {
             ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
         sc->add_option("--dump-shaders", ropt.shaderDumpDir, "GL: write generated shaders to DIR");
         sc->add_option("--program-cache", ropt.programCacheDir, "GL: on-disk program binary cache DIR");
-    };
+    }
     // --skip / --only (render, compare, bench): tools/lib/draw_select.h.
-    std::optional<std::string> skipDraws, onlyDraws;
-    auto addDrawSelectOpts = [&](CLI::App* sc) {
+    void addDrawSelectOpts(CLI::App* sc) {
         sc->add_option_function<std::string>("--skip", [&](const std::string& v) { skipDraws = v; },
                                               "leave these draws out: comma-separated numbers and ranges such as "
                                               "3,10-12, draws numbered from 1 as --replay-end counts them");
         sc->add_option_function<std::string>("--only", [&](const std::string& v) { onlyDraws = v; },
                                               "draw only these draws (same syntax; with --skip, these less the skipped)");
-    };
+    }
 
-    std::vector<std::string> infoFiles;
-    auto* info = app.add_subcommand("info", "version, game ID, record counts, draws and commands");
-    info->add_option("DUMP", infoFiles)->required();
-    bool infoTiming = false;
-    info->add_flag("--timing", infoTiming,
-                   "replay on the software model and print the GE-time estimate of the frame, in parts (docs/timing.md)");
+    // info, disasm, render
+    void declareInspect() {
+        info = app.add_subcommand("info", "version, game ID, record counts, draws and commands");
+        info->add_option("DUMP", infoFiles)->required();
+        info->add_flag("--timing", infoTiming,
+                       "replay on the software model and print the GE-time estimate of the frame, in parts (docs/timing.md)");
 
-    std::string disasmFile;
-    auto* disasm = app.add_subcommand("disasm", "one line per command");
-    disasm->add_option("DUMP", disasmFile)->required();
+        disasm = app.add_subcommand("disasm", "one line per command");
+        disasm->add_option("DUMP", disasmFile)->required();
 
-    std::string renderFile, outPng, depthOut, vramOut;
-    bool stats = false;
-    auto* render = app.add_subcommand("render", "replay a dump and write the displayed frame as an image");
-    render->add_option("DUMP", renderFile)->required();
-    render->add_option("-o,--output", outPng,
-                       "output image, 480x272 (480N x 272N with --scale N; .png, other extensions through OpenImageIO)")
-        ->required();
-    render->add_option("--depth-out", depthOut, "write u32 width, u32 height, u16 depth per pixel");
-    render->add_option("--vram-out", vramOut, "write the 2 MiB of VRAM after the frame");
-    render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
-    render->add_flag("--stats", stats, "print counters");
-    addBackendOpts(render);
-    addDrawSelectOpts(render);
+        render = app.add_subcommand("render", "replay a dump and write the displayed frame as an image");
+        render->add_option("DUMP", renderFile)->required();
+        render->add_option("-o,--output", outPng,
+                           "output image, 480x272 (480N x 272N with --scale N; .png, other extensions through OpenImageIO)")
+            ->required();
+        render->add_option("--depth-out", depthOut, "write u32 width, u32 height, u16 depth per pixel");
+        render->add_option("--vram-out", vramOut, "write the 2 MiB of VRAM after the frame");
+        render->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+        render->add_flag("--stats", stats, "print counters");
+        addBackendOpts(render);
+        addDrawSelectOpts(render);
+    }
 
-    std::vector<std::string> cmpFiles;
-    std::string refDir, refBackend, jsonPath, diffDir;
-    double maxMse = -1;
-    auto* compare = app.add_subcommand("compare", "render dumps and compare with reference images (PPSSPP's MSE)");
-    compare->add_option("DUMP", cmpFiles)->required();
-    compare->add_option("--ref-dir", refDir, "folder with NAME-soft.png references");
-    compare->add_option("--ref-backend", refBackend, "compare against another backend's render instead");
-    compare->add_option("--max-mse", maxMse, "non-zero exit when any dump exceeds this MSE")->check(CLI::Range(0.0, 65025.0));
-    compare->add_option("--json", jsonPath, "write results as JSON (schema: tools/lib/batch.h)");
-    std::string shardText;
-    bool jsonNoTimes = false;
-    auto* shardOpt = compare->add_option("--shard", shardText,
-                        "i/n: run only shard i of n (dumps in name order, every n-th from the i-th); join the "
-                        "shards' --json files with ge2gl merge");
-    compare->add_flag("--json-no-times", jsonNoTimes, "leave the run times out of the JSON (same file every run)");
-    compare->add_option("--diff-dir", diffDir, "write difference pictures here");
-    compare->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
-    addBackendOpts(compare);
-    addDrawSelectOpts(compare);
+    // compare
+    void declareCompare() {
+        compare = app.add_subcommand("compare", "render dumps and compare with reference images (PPSSPP's MSE)");
+        compare->add_option("DUMP", cmpFiles)->required();
+        compare->add_option("--ref-dir", refDir, "folder with NAME-soft.png references");
+        compare->add_option("--ref-backend", refBackend, "compare against another backend's render instead");
+        compare->add_option("--max-mse", maxMse, "non-zero exit when any dump exceeds this MSE")->check(CLI::Range(0.0, 65025.0));
+        compare->add_option("--json", jsonPath, "write results as JSON (schema: tools/lib/batch.h)");
+        shardOpt = compare->add_option("--shard", shardText,
+                            "i/n: run only shard i of n (dumps in name order, every n-th from the i-th); join the "
+                            "shards' --json files with ge2gl merge");
+        compare->add_flag("--json-no-times", jsonNoTimes, "leave the run times out of the JSON (same file every run)");
+        compare->add_option("--diff-dir", diffDir, "write difference pictures here");
+        compare->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+        addBackendOpts(compare);
+        addDrawSelectOpts(compare);
+    }
 
-    std::vector<std::string> benchFiles;
-    int repeat = 3;
-    tools::StepOptions stepOpt;
-    std::string stepFile;
-    auto* step = app.add_subcommand("step", "replay a dump to one command with the GE debugger and print the state there");
-    step->add_option("DUMP", stepFile)->required();
-    step->add_option("--break", stepOpt.breakAt,
-                     "where: draw:N (Nth PRIM/BEZIER/SPLINE), prim:N, command:N, op:NAME[:N], addr:ADDR[:N]; "
-                     "N counts from 1")
-        ->required();
-    step->add_option("--out-dir", stepOpt.outDir,
-                     "write color.png, depth.png, stencil.png (after the command), texture-L*.png and clut.png "
-                     "(before it)");
-    addBackendOpts(step);
+    // step, bench
+    void declareStepBench() {
+        step = app.add_subcommand("step", "replay a dump to one command with the GE debugger and print the state there");
+        step->add_option("DUMP", stepFile)->required();
+        step->add_option("--break", stepOpt.breakAt,
+                         "where: draw:N (Nth PRIM/BEZIER/SPLINE), prim:N, command:N, op:NAME[:N], addr:ADDR[:N]; "
+                         "N counts from 1")
+            ->required();
+        step->add_option("--out-dir", stepOpt.outDir,
+                         "write color.png, depth.png, stencil.png (after the command), texture-L*.png and clut.png "
+                         "(before it)");
+        addBackendOpts(step);
 
-    auto* bench = app.add_subcommand("bench", "time the replay of dumps (median of --repeat runs)");
-    bench->add_option("DUMP", benchFiles)->required();
-    bench->add_option("--repeat", repeat, "runs per dump")->check(CLI::Range(1, 1000));
-    bool nullGl = false, warm = false;
-    bench->add_flag("--null-gl", nullGl, "GL: replay with a GL whose calls do nothing (same as --context null)");
-    bench->add_flag("--warm", warm,
-                    "one backend per dump for every run, after an untimed first run: the steady-state cost of a "
-                    "frame (textures decoded, programs compiled), as in an emulator");
-    addBackendOpts(bench);
-    addDrawSelectOpts(bench);
+        bench = app.add_subcommand("bench", "time the replay of dumps (median of --repeat runs)");
+        bench->add_option("DUMP", benchFiles)->required();
+        bench->add_option("--repeat", repeat, "runs per dump")->check(CLI::Range(1, 1000));
+        bench->add_flag("--null-gl", nullGl, "GL: replay with a GL whose calls do nothing (same as --context null)");
+        bench->add_flag("--warm", warm,
+                        "one backend per dump for every run, after an untimed first run: the steady-state cost of a "
+                        "frame (textures decoded, programs compiled), as in an emulator");
+        addBackendOpts(bench);
+        addDrawSelectOpts(bench);
+    }
 
-    // blame and bisect: tools/lib/blame.h, tools/lib/bisect.h.
-    std::string blameFile;
-    tools::BlameOptions blameOpt;
-    auto* blame = app.add_subcommand("blame", "which draws own the pixels that differ from a reference, ranked by "
-                                              "their share of the squared error");
-    blame->add_option("DUMP", blameFile)->required();
-    blame->add_option("--ref", blameOpt.refPng, "reference picture (480x272 PNG, e.g. a frametest's NAME-soft.png)");
-    blame->add_option("--ref-backend", blameOpt.refBackend, "reference: the same dump rendered by this backend")
-        ->check(CLI::IsMember({"soft", "gl", "null"}));
-    blame->add_option("--top", blameOpt.top, "draws to list (default 10)")->check(CLI::Range(0, 100000));
-    blame->add_option("-o,--output", blameOpt.picturePath,
-                      "picture: the render dimmed, the top draws' differing pixels tinted and outlined, one colour "
-                      "each (others white)");
-    blame->add_option("--json", blameOpt.jsonPath, "write the ranking as JSON");
-    blame->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
-    addBackendOpts(blame);
+    // blame, bisect
+    void declareBlameBisect() {
+        // blame and bisect: tools/lib/blame.h, tools/lib/bisect.h.
+        blame = app.add_subcommand("blame", "which draws own the pixels that differ from a reference, ranked by "
+                                                  "their share of the squared error");
+        blame->add_option("DUMP", blameFile)->required();
+        blame->add_option("--ref", blameOpt.refPng, "reference picture (480x272 PNG, e.g. a frametest's NAME-soft.png)");
+        blame->add_option("--ref-backend", blameOpt.refBackend, "reference: the same dump rendered by this backend")
+            ->check(CLI::IsMember({"soft", "gl", "null"}));
+        blame->add_option("--top", blameOpt.top, "draws to list (default 10)")->check(CLI::Range(0, 100000));
+        blame->add_option("-o,--output", blameOpt.picturePath,
+                          "picture: the render dimmed, the top draws' differing pixels tinted and outlined, one colour "
+                          "each (others white)");
+        blame->add_option("--json", blameOpt.jsonPath, "write the ranking as JSON");
+        blame->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+        addBackendOpts(blame);
 
-    std::string bisectFile;
-    tools::BisectOptions bisectOpt;
-    auto* bisect = app.add_subcommand("bisect", "the first draw after which two replays differ (one lockstep replay: "
-                                                "DUMP on --backend vs --ref-backend, or vs --ref-dump on --backend)");
-    bisect->add_option("DUMP", bisectFile)->required();
-    bisect->add_option("--ref-backend", bisectOpt.refBackend, "other side: the same dump on this backend")
-        ->check(CLI::IsMember({"soft", "gl", "null"}));
-    bisect->add_option("--ref-dump", bisectOpt.refDumpPath, "other side: this dump on --backend");
-    bisect->add_flag("--ignore-depth", bisectOpt.ignoreDepth, "compare colour only (default: colour and depth)");
-    bisect->add_flag("--all-vram", bisectOpt.allVram,
-                     "compare all 2 MiB of VRAM byte for byte after each draw (default: the draw's target colour and "
-                     "depth inside its scissor)");
-    bisect->add_option("--tolerance", bisectOpt.tolerance, "per-channel colour difference allowed (0-255, default 0)")
-        ->check(CLI::Range(0, 255));
-    bisect->add_option("--json", bisectOpt.jsonPath, "write the result as JSON");
-    bisect->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
-    addBackendOpts(bisect);
+        bisect = app.add_subcommand("bisect", "the first draw after which two replays differ (one lockstep replay: "
+                                                    "DUMP on --backend vs --ref-backend, or vs --ref-dump on --backend)");
+        bisect->add_option("DUMP", bisectFile)->required();
+        bisect->add_option("--ref-backend", bisectOpt.refBackend, "other side: the same dump on this backend")
+            ->check(CLI::IsMember({"soft", "gl", "null"}));
+        bisect->add_option("--ref-dump", bisectOpt.refDumpPath, "other side: this dump on --backend");
+        bisect->add_flag("--ignore-depth", bisectOpt.ignoreDepth, "compare colour only (default: colour and depth)");
+        bisect->add_flag("--all-vram", bisectOpt.allVram,
+                         "compare all 2 MiB of VRAM byte for byte after each draw (default: the draw's target colour and "
+                         "depth inside its scissor)");
+        bisect->add_option("--tolerance", bisectOpt.tolerance, "per-channel colour difference allowed (0-255, default 0)")
+            ->check(CLI::Range(0, 255));
+        bisect->add_option("--json", bisectOpt.jsonPath, "write the result as JSON");
+        bisect->add_option("--replay-end", ropt.replayEnd, "stop after the Nth draw")->check(wholeNumber(u64(1) << 40));
+        addBackendOpts(bisect);
+    }
 
-    std::vector<std::string> mergeFiles;
-    std::string mergeOut;
-    tools::FuzzOptions fuzzOpt;
-    auto* fuzz = app.add_subcommand("fuzz", "differential fuzzer: random valid GE scenes rendered by --backend (default "
-                                            "gl) and --ref-backend, compared exactly; failing cases minimised");
-    fuzz->add_option("--ref-backend", fuzzOpt.refBackend, "reference backend (default soft)")
-        ->check(CLI::IsMember({"soft", "gl", "null"}));
-    fuzz->add_option("--seed", fuzzOpt.seed, "first seed (case i uses seed + i; default 1)");
-    fuzz->add_option("--count", fuzzOpt.count, "cases (default 100)")->check(wholeNumber(u64(1) << 40));
-    fuzz->add_option("--out", fuzzOpt.outDir, "write minimised failing cases as DIR/case-SEED.ppdmp");
-    fuzz->add_option("--json", fuzzOpt.jsonPath, "write the summary and the failing seeds as JSON");
-    fuzz->add_option("--minimise-tries", fuzzOpt.minimiseTries, "renders spent minimising one failing case (default 300)")
-        ->check(CLI::Range(0, 1000000));
-    fuzz->add_flag("--rgb-only", fuzzOpt.rgbOnly, "ignore the alpha/stencil bits of the colour buffer");
-    fuzz->add_flag("--depth", fuzzOpt.compareDepth, "also compare the depth buffer");
-    fuzz->add_option("--max-mse", fuzzOpt.maxMse,
-                     "diverge only when the frames' RGB MSE exceeds this (a pair that is not bit-exact: "
-                     "--gl-mode hw against soft, docs/accuracy.md; default: exact)")
-        ->check(CLI::Range(0.0, 65025.0));
-    fuzz->add_flag("--quiet", fuzzOpt.quiet, "summary only");
-    addBackendOpts(fuzz);
-    addDrawSelectOpts(fuzz);  // fuzz: --skip/--only act on the --ref-backend side only (forces divergences)
+    // fuzz, merge, report
+    void declareFuzzMergeReport() {
+        fuzz = app.add_subcommand("fuzz", "differential fuzzer: random valid GE scenes rendered by --backend (default "
+                                                "gl) and --ref-backend, compared exactly; failing cases minimised");
+        fuzz->add_option("--ref-backend", fuzzOpt.refBackend, "reference backend (default soft)")
+            ->check(CLI::IsMember({"soft", "gl", "null"}));
+        fuzz->add_option("--seed", fuzzOpt.seed, "first seed (case i uses seed + i; default 1)");
+        fuzz->add_option("--count", fuzzOpt.count, "cases (default 100)")->check(wholeNumber(u64(1) << 40));
+        fuzz->add_option("--out", fuzzOpt.outDir, "write minimised failing cases as DIR/case-SEED.ppdmp");
+        fuzz->add_option("--json", fuzzOpt.jsonPath, "write the summary and the failing seeds as JSON");
+        fuzz->add_option("--minimise-tries", fuzzOpt.minimiseTries, "renders spent minimising one failing case (default 300)")
+            ->check(CLI::Range(0, 1000000));
+        fuzz->add_flag("--rgb-only", fuzzOpt.rgbOnly, "ignore the alpha/stencil bits of the colour buffer");
+        fuzz->add_flag("--depth", fuzzOpt.compareDepth, "also compare the depth buffer");
+        fuzz->add_option("--max-mse", fuzzOpt.maxMse,
+                         "diverge only when the frames' RGB MSE exceeds this (a pair that is not bit-exact: "
+                         "--gl-mode hw against soft, docs/accuracy.md; default: exact)")
+            ->check(CLI::Range(0.0, 65025.0));
+        fuzz->add_flag("--quiet", fuzzOpt.quiet, "summary only");
+        addBackendOpts(fuzz);
+        addDrawSelectOpts(fuzz);  // fuzz: --skip/--only act on the --ref-backend side only (forces divergences)
 
-    auto* merge = app.add_subcommand("merge", "join the --json files of compare --shard i/n runs into the JSON one "
-                                              "unsharded run writes; missing or duplicate shards are errors");
-    merge->add_option("JSON", mergeFiles)->required();
-    merge->add_option("-o,--output", mergeOut, "merged JSON file")->required();
+        merge = app.add_subcommand("merge", "join the --json files of compare --shard i/n runs into the JSON one "
+                                                  "unsharded run writes; missing or duplicate shards are errors");
+        merge->add_option("JSON", mergeFiles)->required();
+        merge->add_option("-o,--output", mergeOut, "merged JSON file")->required();
 
-    tools::ReportArgs reportArgs;
-    auto* report = app.add_subcommand("report", "a static HTML page (no server, no network) of compare --json results: "
-                                                "per dump the reference, render, heat map and blame table; sortable "
-                                                "summary; before/after with --before");
-    report->add_option("JSON", reportArgs.runFiles, "compare --json file of the run, or the files of all its shards")
-        ->required();
-    report->add_option("-o,--output", reportArgs.outDir, "folder to write index.html and img/ into")->required();
-    report->add_option("--before", reportArgs.beforeFiles,
-                       "compare --json file of an earlier run (repeat for its shards): which dumps got better or worse")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-    report->add_option("--title", reportArgs.title, "page title");
-    report->add_option("--top", reportArgs.top, "blame rows per dump (default 10)")->check(CLI::Range(1, 1000));
-    report->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
-    report->add_option("--context", ropt.glContext, "GL context for a gl run: osmesa | egl")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
-    report->add_option("--replay-timing", replayTiming, "as given to compare (default ppsspp)")
-        ->check(CLI::IsMember({"ppsspp", "eager"}));
+        report = app.add_subcommand("report", "a static HTML page (no server, no network) of compare --json results: "
+                                                    "per dump the reference, render, heat map and blame table; sortable "
+                                                    "summary; before/after with --before");
+        report->add_option("JSON", reportArgs.runFiles, "compare --json file of the run, or the files of all its shards")
+            ->required();
+        report->add_option("-o,--output", reportArgs.outDir, "folder to write index.html and img/ into")->required();
+        report->add_option("--before", reportArgs.beforeFiles,
+                           "compare --json file of an earlier run (repeat for its shards): which dumps got better or worse")
+            ->expected(1)
+            ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+        report->add_option("--title", reportArgs.title, "page title");
+        report->add_option("--top", reportArgs.top, "blame rows per dump (default 10)")->check(CLI::Range(1, 1000));
+        report->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
+        report->add_option("--context", ropt.glContext, "GL context for a gl run: osmesa | egl")
+            ->check(CLI::IsMember({"osmesa", "egl"}));
+        report->add_option("--replay-timing", replayTiming, "as given to compare (default ppsspp)")
+            ->check(CLI::IsMember({"ppsspp", "eager"}));
+    }
 
+    int parse(int argc, char** argv);
+    int run();
+};
+
+int Cli::parse(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -454,13 +486,17 @@ int main(int argc, char** argv) {
     if (nullGl) ropt.glContext = "null";
     if (ropt.scale > 1 && (ropt.backend != "gl" || ropt.glMode != "hw"))
         return fail("--scale above 1 needs --backend gl --gl-mode hw");
-    tools::Shard shard;
     std::string optErr;  // usage errors: exit 2, as CLI11's
     if (shardOpt->count() && !tools::parseShard(shardText, shard, optErr)) optErr = "--shard '" + shardText + "': " + optErr;
     if (!optErr.empty() || !tools::makeDrawFilter(skipDraws, onlyDraws, ropt.keepDraw, optErr)) {
         std::fprintf(stderr, "ge2gl: %s\n", optErr.c_str());
         return 2;
     }
+    return -1;
+}
+
+// Runs the subcommand given.
+int Cli::run() {
     if (*info) return cmdInfo(infoFiles, infoTiming);
     if (*disasm) return cmdDisasm(disasmFile);
     if (*render) return cmdRender(renderFile, ropt, outPng, depthOut, vramOut, stats);
@@ -495,4 +531,12 @@ int main(int argc, char** argv) {
         return tools::runFuzzCommand(fuzzOpt);
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Cli cli;
+    const int rc = cli.parse(argc, argv);
+    return rc >= 0 ? rc : cli.run();
 }
