@@ -517,10 +517,125 @@ static double median_of(double* v, size_t n) {
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+typedef struct options {
+    unsigned long lists, timeout;
+    int backend, use_egl, hold;
+    const char* backend_name;
+} options;
+
+static int parse_args(int argc, char** argv, options* o) {
+    int i;
+    o->lists = 1000;
+    o->timeout = 120;
+    o->backend = GE2GL_BACKEND_SOFT;
+    o->use_egl = 0;
+    o->hold = 0;
+    o->backend_name = "soft";
+    for (i = 1; i < argc; ++i) {
+        if (!strcmp(argv[i], "--lists") && i + 1 < argc) {
+            if (!parse_uint(argv[++i], 1000000, &o->lists)) return 0;
+        } else if (!strcmp(argv[i], "--timeout") && i + 1 < argc) {
+            if (!parse_uint(argv[++i], 100000, &o->timeout)) return 0;
+        } else if (!strcmp(argv[i], "--hold")) {
+            o->hold = 1;
+        } else if (!strcmp(argv[i], "--egl")) {
+            o->use_egl = 1;
+        } else if (!strcmp(argv[i], "--backend") && i + 1 < argc) {
+            o->backend_name = argv[++i];
+            if (!strcmp(o->backend_name, "null")) o->backend = GE2GL_BACKEND_NULL;
+            else if (!strcmp(o->backend_name, "soft")) o->backend = GE2GL_BACKEND_SOFT;
+            else if (!strcmp(o->backend_name, "gl")) o->backend = GE2GL_BACKEND_GL_HEADLESS;
+            else return 0;
+        } else {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* The watchdog: a deadlock between the threads ends the process with status 3. */
+static void start_watchdog(unsigned long timeout) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_watchdog;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGALRM, &sa, NULL);
+    alarm((unsigned)timeout);
+}
+
+/* 4. The game: write and queue every list, keeping at most LIST_SLOTS in flight, then wait until
+   every list has completed and its interrupts were handled. */
+static int play_lists(game* g) {
+    uint32_t k;
+    g_phase = 1;
+    for (k = 0; k < g->lists; ++k) {
+        g_current_list = (sig_atomic_t)k;
+        /* The list buffer is free again once the list that used it has completed. */
+        if (k >= LIST_SLOTS && !wait_list(g, g->ids[k - LIST_SLOTS])) return 0;
+        if (!run_list(g, k)) return 0;
+    }
+    g_phase = 2;
+    for (k = g->lists > LIST_SLOTS ? g->lists - LIST_SLOTS : 0; k < g->lists; ++k) {
+        g_current_list = (sig_atomic_t)k;
+        if (!wait_list(g, g->ids[k])) return 0;
+    }
+    /* A list reads COMPLETED before its finish callback has returned: handle the last ones, and
+       wait for the GE to become idle (sceGeDrawSync(1)). */
+    g_phase = 3;
+    for (;;) {
+        int32_t state = -1;
+        if (!service_interrupts(g)) return 0;
+        if (!peek_draw(g, &state)) return 0;
+        if (state == GE2GL_LIST_COMPLETED && g->finishes >= g->lists) return 1;
+        nap_us(20);
+    }
+}
+
+/* 6. The frame: the last list's clear colour around its sprites, its sprite colour inside. */
+static int check_frame(game* g, uint8_t* rgba, int backend) {
+    static const int probes[][3] = {{0, 0, 0}, {479, 0, 0}, {0, 271, 0}, {479, 271, 0}, {300, 20, 0},
+                                    {80, 70, 1}, {240, 136, 1}, {439, 239, 1}, {120, 100, 0}};
+    const uint32_t last = g->lists - 1;
+    size_t p;
+    if (!check(g, ge2gl_read_frame(g->s->ge, FRAME_ADDR, FRAME_STRIDE, GE2GL_FORMAT_8888, WIDTH, HEIGHT, rgba,
+                                   WIDTH * HEIGHT * 4),
+               "ge2gl_read_frame"))
+        return 0;
+    if (backend == GE2GL_BACKEND_NULL) {
+        printf("threaded_host: null backend draws nothing; frame not checked\n");
+        return 1;
+    }
+    for (p = 0; p < sizeof probes / sizeof probes[0]; ++p) {
+        const uint8_t* px = rgba + ((size_t)probes[p][1] * WIDTH + (size_t)probes[p][0]) * 4;
+        const uint32_t want = probes[p][2] ? sprite_colour(last) : clear_colour(last);
+        const uint32_t got = (uint32_t)px[0] | ((uint32_t)px[1] << 8) | ((uint32_t)px[2] << 16);
+        if (got != (want & 0xFFFFFFu)) {
+            char buf[200];
+            snprintf(buf, sizeof buf, "frame pixel (%d, %d) is 0x%06x (BGR), expected the last list's %s 0x%06x",
+                     probes[p][0], probes[p][1], (unsigned)got, probes[p][2] ? "sprite colour" : "clear colour",
+                     (unsigned)(want & 0xFFFFFFu));
+            fail(g, buf);
+        }
+    }
+    return !g->failed;
+}
+
+/* 7. The result line. */
+static void print_result(game* g, const host* s, unsigned long lists, int hold, double wall) {
+    double peak = g->list_peek_max > g->draw_peek_max ? g->list_peek_max : g->draw_peek_max;
+    double med = median_of(g->peek_us, g->peeks);
+    printf("threaded_host: GE thread ran %lu slices; %lu list peeks (max %.1f us), %lu draw peeks (max %.1f us)\n",
+           s->runs, (unsigned long)g->list_peeks, g->list_peek_max, (unsigned long)g->draw_peeks, g->draw_peek_max);
+    printf("threaded_host: %lu ge2gl calls (peeks, memory writes, stall updates) returned while %s\n",
+           g->calls_while_pending, hold ? "the GE held an interrupt" : "a GE callback was blocked waiting for this thread");
+    printf("threaded_host: lists=%lu signals=%lu finishes=%lu peeks=%lu peek_us_median=%.2f peek_us_max=%.2f "
+           "wall_s=%.3f\n",
+           lists, (unsigned long)g->signals, (unsigned long)g->finishes, (unsigned long)g->peeks, med, peak, wall);
+}
+
 int main(int argc, char** argv) {
-    unsigned long lists = 1000, timeout = 120;
-    int backend = GE2GL_BACKEND_SOFT, use_egl = 0, hold = 0, i, rc = 1, thread_started = 0;
-    const char* backend_name = "soft";
+    options o;
+    int rc = 1, thread_started = 0;
     host s;
     game g;
     ge2gl_config cfg;
@@ -530,45 +645,18 @@ int main(int argc, char** argv) {
     uint32_t k;
 
     setvbuf(stdout, NULL, _IOLBF, 0); /* lines reach a pipe even when the watchdog ends the process */
-    for (i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--lists") && i + 1 < argc) {
-            if (!parse_uint(argv[++i], 1000000, &lists)) return usage();
-        } else if (!strcmp(argv[i], "--timeout") && i + 1 < argc) {
-            if (!parse_uint(argv[++i], 100000, &timeout)) return usage();
-        } else if (!strcmp(argv[i], "--hold")) {
-            hold = 1;
-        } else if (!strcmp(argv[i], "--egl")) {
-            use_egl = 1;
-        } else if (!strcmp(argv[i], "--backend") && i + 1 < argc) {
-            backend_name = argv[++i];
-            if (!strcmp(backend_name, "null")) backend = GE2GL_BACKEND_NULL;
-            else if (!strcmp(backend_name, "soft")) backend = GE2GL_BACKEND_SOFT;
-            else if (!strcmp(backend_name, "gl")) backend = GE2GL_BACKEND_GL_HEADLESS;
-            else return usage();
-        } else {
-            return usage();
-        }
-    }
-
-    /* The watchdog: a deadlock between the threads ends the process with status 3. */
-    {
-        struct sigaction sa;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_watchdog;
-        sigemptyset(&sa.sa_mask);
-        sigaction(SIGALRM, &sa, NULL);
-        alarm((unsigned)timeout);
-    }
+    if (!parse_args(argc, argv, &o)) return usage();
+    start_watchdog(o.timeout);
 
     memset(&s, 0, sizeof s);
     memset(&g, 0, sizeof g);
     pthread_mutex_init(&s.mu, NULL);
     pthread_cond_init(&s.done, NULL);
-    s.hold = hold;
+    s.hold = o.hold;
     g.s = &s;
-    g.lists = (uint32_t)lists;
+    g.lists = (uint32_t)o.lists;
     g.cbid = -1;
-    g.ids = (int32_t*)malloc(lists * sizeof *g.ids);
+    g.ids = (int32_t*)malloc(o.lists * sizeof *g.ids);
     rgba = (uint8_t*)malloc(WIDTH * HEIGHT * 4);
     if (!g.ids || !rgba) {
         fprintf(stderr, "threaded_host: out of memory\n");
@@ -585,19 +673,19 @@ int main(int argc, char** argv) {
     ge2gl_config_init(&cfg);
     cfg.ram = NULL;
     cfg.vram = NULL;
-    cfg.backend = backend;
-    cfg.gl_use_egl = use_egl;
-    cfg.hold_interrupts = hold;
+    cfg.backend = o.backend;
+    cfg.gl_use_egl = o.use_egl;
+    cfg.hold_interrupts = o.hold;
     cfg.callbacks.user = &s;
     cfg.callbacks.signal = on_signal;
     cfg.callbacks.finish = on_finish;
     cfg.callbacks.error = on_error;
     if (ge2gl_create(&cfg, &s.ge) != GE2GL_OK) {
-        fprintf(stderr, "threaded_host: ge2gl_create (%s backend) failed: %s\n", backend_name, ge2gl_last_message(NULL));
+        fprintf(stderr, "threaded_host: ge2gl_create (%s backend) failed: %s\n", o.backend_name, ge2gl_last_message(NULL));
         goto done;
     }
-    printf("threaded_host: %s backend, %lu lists, interrupts %s\n", backend_name, lists,
-           hold ? "held until ge2gl_interrupt_ack (--hold)" : "handled while the callback waits");
+    printf("threaded_host: %s backend, %lu lists, interrupts %s\n", o.backend_name, o.lists,
+           o.hold ? "held until ge2gl_interrupt_ack (--hold)" : "handled while the callback waits");
 
     /* 2. sceGeSetCallback. */
     if (!check(&g, ge2gl_set_callback(s.ge, SIGNAL_FUNC, SIGNAL_ARG, FINISH_FUNC, FINISH_ARG, &g.cbid),
@@ -611,30 +699,8 @@ int main(int argc, char** argv) {
     }
     thread_started = 1;
 
-    /* 4. The game: write and queue every list, keeping at most LIST_SLOTS in flight. */
     t0 = now_s();
-    g_phase = 1;
-    for (k = 0; k < g.lists; ++k) {
-        g_current_list = (sig_atomic_t)k;
-        /* The list buffer is free again once the list that used it has completed. */
-        if (k >= LIST_SLOTS && !wait_list(&g, g.ids[k - LIST_SLOTS])) goto done;
-        if (!run_list(&g, k)) goto done;
-    }
-    g_phase = 2;
-    for (k = g.lists > LIST_SLOTS ? g.lists - LIST_SLOTS : 0; k < g.lists; ++k) {
-        g_current_list = (sig_atomic_t)k;
-        if (!wait_list(&g, g.ids[k])) goto done;
-    }
-    /* A list reads COMPLETED before its finish callback has returned: handle the last ones, and
-       wait for the GE to become idle (sceGeDrawSync(1)). */
-    g_phase = 3;
-    for (;;) {
-        int32_t state = -1;
-        if (!service_interrupts(&g)) goto done;
-        if (!peek_draw(&g, &state)) goto done;
-        if (state == GE2GL_LIST_COMPLETED && g.finishes >= g.lists) break;
-        nap_us(20);
-    }
+    if (!play_lists(&g)) goto done;
     wall = now_s() - t0;
 
     /* 5. Stop the GE thread, then a wait-mode sceGeDrawSync(0) from this thread: the queue must be
@@ -656,49 +722,11 @@ int main(int argc, char** argv) {
         }
     }
 
-    /* 6. The frame: the last list's clear colour around its sprites, its sprite colour inside. */
-    if (!check(&g, ge2gl_read_frame(s.ge, FRAME_ADDR, FRAME_STRIDE, GE2GL_FORMAT_8888, WIDTH, HEIGHT, rgba,
-                                    WIDTH * HEIGHT * 4),
-               "ge2gl_read_frame"))
-        goto done;
-    if (backend == GE2GL_BACKEND_NULL) {
-        printf("threaded_host: null backend draws nothing; frame not checked\n");
-    } else {
-        static const int probes[][3] = {{0, 0, 0}, {479, 0, 0}, {0, 271, 0}, {479, 271, 0}, {300, 20, 0},
-                                        {80, 70, 1}, {240, 136, 1}, {439, 239, 1}, {120, 100, 0}};
-        const uint32_t last = g.lists - 1;
-        size_t p;
-        for (p = 0; p < sizeof probes / sizeof probes[0]; ++p) {
-            const uint8_t* px = rgba + ((size_t)probes[p][1] * WIDTH + (size_t)probes[p][0]) * 4;
-            const uint32_t want = probes[p][2] ? sprite_colour(last) : clear_colour(last);
-            const uint32_t got = (uint32_t)px[0] | ((uint32_t)px[1] << 8) | ((uint32_t)px[2] << 16);
-            if (got != (want & 0xFFFFFFu)) {
-                char buf[200];
-                snprintf(buf, sizeof buf, "frame pixel (%d, %d) is 0x%06x (BGR), expected the last list's %s 0x%06x",
-                         probes[p][0], probes[p][1], (unsigned)got, probes[p][2] ? "sprite colour" : "clear colour",
-                         (unsigned)(want & 0xFFFFFFu));
-                fail(&g, buf);
-            }
-        }
-        if (g.failed) goto done;
-    }
-
+    if (!check_frame(&g, rgba, o.backend)) goto done;
     if (g.signals != g.lists || g.finishes != g.lists) {
         fail(&g, "the signal and finish counts do not match the lists");
     }
-
-    /* 7. The result line. */
-    {
-        double peak = g.list_peek_max > g.draw_peek_max ? g.list_peek_max : g.draw_peek_max;
-        double med = median_of(g.peek_us, g.peeks);
-        printf("threaded_host: GE thread ran %lu slices; %lu list peeks (max %.1f us), %lu draw peeks (max %.1f us)\n",
-               s.runs, (unsigned long)g.list_peeks, g.list_peek_max, (unsigned long)g.draw_peeks, g.draw_peek_max);
-        printf("threaded_host: %lu ge2gl calls (peeks, memory writes, stall updates) returned while %s\n",
-               g.calls_while_pending, hold ? "the GE held an interrupt" : "a GE callback was blocked waiting for this thread");
-        printf("threaded_host: lists=%lu signals=%lu finishes=%lu peeks=%lu peek_us_median=%.2f peek_us_max=%.2f "
-               "wall_s=%.3f\n",
-               lists, (unsigned long)g.signals, (unsigned long)g.finishes, (unsigned long)g.peeks, med, peak, wall);
-    }
+    print_result(&g, &s, o.lists, o.hold, wall);
     rc = g.failed ? 1 : 0;
 
 done:
