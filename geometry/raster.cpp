@@ -241,85 +241,74 @@ void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, con
     }
 }
 
-}  // namespace
-
-void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
-                    const ScreenVertex& prov, const Band& band, FragmentSink& sink) {
-    const ScreenVertex* v[3] = {&in0, &in1, &in2};
-    s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
-    if (area == 0) {
-        rasterZeroAreaTriangle(rp, in0, in1, in2, prov, band, sink);
-        return;
-    }
-    const bool swapped = area < 0;
-    if (swapped) {
-        // Either winding rasterises the same pixels; work with the clockwise (on screen) order,
-        // for which all three edge functions are positive inside.
-        std::swap(v[1], v[2]);
-        area = -area;
-    }
-
-    // Pixel box whose centres lie within the vertices' extent, clipped.
-    const int minX = std::min({v[0]->x, v[1]->x, v[2]->x}), maxX = std::max({v[0]->x, v[1]->x, v[2]->x});
-    const int minY = std::min({v[0]->y, v[1]->y, v[2]->y}), maxY = std::max({v[0]->y, v[1]->y, v[2]->y});
-    const int px1 = std::max<int>(int(ceilDiv(minX - kTriSample, 16)), rp.clipX1);
-    const int px2 = std::min<int>(int(floorDiv(maxX - kTriSample, 16)), rp.clipX2);
-    int py1, py2;
-    sampleRowsOfTriangle(minY, maxY, py1, py2);
-    clipRows(rp, py1, py2);
-    if (px1 > px2 || !band.overlaps(py1, py2)) return;
-
+// One triangle's edge functions and attribute interpolation, set up once and evaluated per pixel
+// and per 2×2 quad by rasterTriangle.
+struct TriangleWalk {
+    const RasterParams& rp;
+    const ScreenVertex* v[3];  // clockwise on screen (all three edge functions positive inside)
+    bool swapped = false;      // v is in0, in2, in1
     // Edge function i (opposite vertex i) from a = v[i+1] to b = v[i+2]:
     //   E_i(p) = (b.x − a.x)·(p.y − a.y) − (b.y − a.y)·(p.x − a.x) = A·p.x + B·p.y + C.
     // Top-left rule (Figure 4-9): a left edge (going up, dy < 0) or a top edge (horizontal,
     // going right) includes centres exactly on it (E ≥ 0); right and flat bottom edges do not
     // (E ≥ 1).
     s64 A[3], B[3], C[3], thr[3];
-    for (int i = 0; i < 3; ++i) {
-        const ScreenVertex& a = *v[(i + 1) % 3];
-        const ScreenVertex& b = *v[(i + 2) % 3];
-        const s64 dx = s64(b.x) - a.x, dy = s64(b.y) - a.y;
-        A[i] = -dy;
-        B[i] = dx;
-        C[i] = dy * a.x - dx * a.y;
-        thr[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : 1;
-    }
-    auto evalE = [&](int i, s64 px, s64 py) {
-        return A[i] * (16 * px + kTriSample) + B[i] * (16 * py + kTriSample) + C[i];
-    };
-
     // Attribute order (the reference's): PPSSPP's software renderer submits every triangle as
     // (a, b, c) and as (c, b, a) and draws the one with positive area (TransformUnit /
     // BinManager::AddTriangle), so a triangle of negative area is interpolated in the order
-    // in2, in1, in0. Sums of float products depend on that order. o[] is that order; ow*(e)
-    // gives the edge-function weight of o[i] from the weights of v[] (v = in0, in2, in1 when
-    // swapped).
-    const ScreenVertex* o[3] = {&in0, &in1, &in2};
-    if (swapped) std::swap(o[0], o[2]);
-    auto orderWeights = [&](s64 e0, s64 e1, s64 e2, float& w0, float& w1, float& w2) {
+    // in2, in1, in0. Sums of float products depend on that order. o[] is that order.
+    const ScreenVertex* o[3];
+    TriangleConstants same;
+    float wsumRecip = 0;  // the edge functions sum to the (positive) area everywhere
+    float os[3] = {}, ot[3] = {}, oq[3] = {}, orw[3] = {}, ocw[3] = {}, oz[3] = {};
+
+    TriangleWalk(const RasterParams& p, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
+                 const ScreenVertex& prov, s64 area)
+        : rp(p), v{&in0, &in1, &in2}, o{&in0, &in1, &in2} {
+        swapped = area < 0;
+        if (swapped) {
+            // Either winding rasterises the same pixels; work with the clockwise (on screen) order.
+            std::swap(v[1], v[2]);
+            std::swap(o[0], o[2]);
+            area = -area;
+        }
+        for (int i = 0; i < 3; ++i) {
+            const ScreenVertex& a = *v[(i + 1) % 3];
+            const ScreenVertex& b = *v[(i + 2) % 3];
+            const s64 dx = s64(b.x) - a.x, dy = s64(b.y) - a.y;
+            A[i] = -dy;
+            B[i] = dx;
+            C[i] = dy * a.x - dx * a.y;
+            thr[i] = (dy < 0 || (dy == 0 && dx > 0)) ? 0 : 1;
+        }
+        // Constant attributes are detected once so the common cases cost nothing per pixel.
+        same = triangleConstants(rp, in0, in1, in2, prov);
+        wsumRecip = 1.0f / float(area);
+        // Texture coordinates as the reference computes them (texAt below): q_i = 1/w_i.
+        for (int i = 0; i < 3; ++i) {
+            os[i] = o[i]->s, ot[i] = o[i]->t, oq[i] = o[i]->q, ocw[i] = o[i]->w, oz[i] = float(o[i]->z);
+            orw[i] = rp.through ? 1.0f : 1.0f / o[i]->w;
+        }
+    }
+
+    s64 edgeAt(int i, s64 px, s64 py) const {
+        return A[i] * (16 * px + kTriSample) + B[i] * (16 * py + kTriSample) + C[i];
+    }
+    // The edge-function weights of o[] from those of v[].
+    void orderWeights(s64 e0, s64 e1, s64 e2, float& w0, float& w1, float& w2) const {
         if (!swapped) w0 = float(e0), w1 = float(e1), w2 = float(e2);
         else w0 = float(e1), w1 = float(e2), w2 = float(e0);
-    };
-
-    // Constant attributes are detected once so the common cases cost nothing per pixel.
-    const TriangleConstants same = triangleConstants(rp, in0, in1, in2, prov);
-    const ScreenVertex& cs = *same.source;  // colour source when constant
-    const bool zConst = same.z, colConst = same.color, secConst = same.secondary, fogConst = same.fog;
-    // The edge functions sum to the (positive) area everywhere: one reciprocal per triangle.
-    const float wsumRecip = 1.0f / float(area);
-    const u8 fogValue = 255;
+    }
+    void weightsAt(s64 px, s64 py, float& w0, float& w1, float& w2) const {
+        orderWeights(edgeAt(0, px, py), edgeAt(1, px, py), edgeAt(2, px, py), w0, w1, w2);
+    }
 
     // Texture coordinates as the reference computes them, in single precision (PPSSPP
-    // Rasterizer.cpp GetTextureCoordinates[Proj]): q_i = 1/w_i, weights wq_i = E_i·q_i,
+    // Rasterizer.cpp GetTextureCoordinates[Proj]): weights wq_i = E_i·q_i,
     // s = (Σ wq_i·s_i)·(1 / Σ wq_i·Q_i) with the sums taken in attribute order (Q = 1 without
     // texture projection, where the two forms agree). Through mode is screen-linear:
     // s = (Σ E_i·s_i)·(1/area). Level 0 scaling (through mode) is by a power of two and commutes.
-    float os[3] = {}, ot[3] = {}, oq[3] = {}, orw[3] = {}, ocw[3] = {}, oz[3] = {};
-    for (int i = 0; i < 3; ++i) {
-        os[i] = o[i]->s, ot[i] = o[i]->t, oq[i] = o[i]->q, ocw[i] = o[i]->w, oz[i] = float(o[i]->z);
-        orw[i] = rp.through ? 1.0f : 1.0f / o[i]->w;
-    }
-    auto texAt = [&](float w0, float w1, float w2, float& s, float& t) {
+    void texAt(float w0, float w1, float w2, float& s, float& t) const {
         if (rp.through) {
             s = interpolateF(os[0], os[1], os[2], w0, w1, w2, wsumRecip);
             t = interpolateF(ot[0], ot[1], ot[2], w0, w1, w2, wsumRecip);
@@ -329,7 +318,81 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
         const float qRecip = 1.0f / interpolateF(oq[0], oq[1], oq[2], a, b, c, 1.0f);
         s = interpolateF(os[0], os[1], os[2], a, b, c, qRecip);
         t = interpolateF(ot[0], ot[1], ot[2], a, b, c, qRecip);
-    };
+    }
+
+    // Depth, colours and fog of the fragment with attribute-order weights w.
+    void shade(Fragment& f, float fw0, float fw1, float fw2) const {
+        const ScreenVertex& cs = *same.source;  // colour source when constant
+        if (same.z) {
+            f.z = u16(v[0]->z);
+        } else {
+            // Depth as the reference interpolates it (PPSSPP Rasterizer.cpp DrawTriangleSlice):
+            // (E0·z0 + E1·z1 + E2·z2)·(1/area) in single precision, attribute order, converted
+            // with Vec4<float>::Cast<int>, which on x86-64 is cvtps2dq: round to nearest, ties
+            // to even (not truncation). Coplanar geometry drawn twice (decals) z-fights exactly
+            // where these roundings decide; an integer depth plane and float with truncation
+            // both lose against the references (docs/accuracy.md).
+            const float zf = interpolateF(oz[0], oz[1], oz[2], fw0, fw1, fw2, wsumRecip);
+            const float zr = std::nearbyint(zf);  // default rounding mode: nearest, ties to even
+            f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));
+        }
+        if (same.color) {
+            std::memcpy(f.color, cs.color, 4);
+        } else {
+            for (int c = 0; c < 4; ++c)
+                f.color[c] = interpolateColor(o[0]->color[c], o[1]->color[c], o[2]->color[c], fw0, fw1, fw2, wsumRecip);
+        }
+        if (same.secondary) {
+            std::memcpy(f.secondary, cs.secondary, 3);
+        } else {
+            for (int c = 0; c < 3; ++c)
+                f.secondary[c] =
+                    interpolateColor(o[0]->secondary[c], o[1]->secondary[c], o[2]->secondary[c], fw0, fw1, fw2, wsumRecip);
+        }
+        f.fog = same.fog ? u8(255) : fogToByte(interpolateF(o[0]->fog, o[1]->fog, o[2]->fog, fw0, fw1, fw2, wsumRecip));
+    }
+
+    // The level of detail and the slope-mode W of the 2×2 quad whose top-left pixel is (qx, qy),
+    // from its top-left, top-right and bottom-left pixels (also outside the triangle: the edge
+    // functions are planes).
+    void quadValues(int qx, int qy, float& lod, float& quadW) const {
+        float a0, a1, a2;
+        weightsAt(qx, qy, a0, a1, a2);
+        if (rp.needLod) {
+            float b0, b1, b2, c0, c1, c2, s00, t00, s10, t10, s01, t01;
+            weightsAt(qx + 1, qy, b0, b1, b2);
+            weightsAt(qx, qy + 1, c0, c1, c2);
+            texAt(a0, a1, a2, s00, t00);
+            texAt(b0, b1, b2, s10, t10);
+            texAt(c0, c1, c2, s01, t01);
+            lod = lodFromStepsF(rp, s10 - s00, t01 - t00);
+        }
+        // Slope mode: clip W screen-linear at the quad's top-left pixel (the reference's "one
+        // value for the slope").
+        if (rp.needW) quadW = interpolateF(ocw[0], ocw[1], ocw[2], a0, a1, a2, wsumRecip);
+    }
+};
+
+}  // namespace
+
+void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
+                    const ScreenVertex& prov, const Band& band, FragmentSink& sink) {
+    const s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
+    if (area == 0) {
+        rasterZeroAreaTriangle(rp, in0, in1, in2, prov, band, sink);
+        return;
+    }
+    // Pixel box whose centres lie within the vertices' extent, clipped.
+    const int minX = std::min({in0.x, in1.x, in2.x}), maxX = std::max({in0.x, in1.x, in2.x});
+    const int minY = std::min({in0.y, in1.y, in2.y}), maxY = std::max({in0.y, in1.y, in2.y});
+    const int px1 = std::max<int>(int(ceilDiv(minX - kTriSample, 16)), rp.clipX1);
+    const int px2 = std::min<int>(int(floorDiv(maxX - kTriSample, 16)), rp.clipX2);
+    int py1, py2;
+    sampleRowsOfTriangle(minY, maxY, py1, py2);
+    clipRows(rp, py1, py2);
+    if (px1 > px2 || !band.overlaps(py1, py2)) return;
+
+    const TriangleWalk tw(rp, in0, in1, in2, prov, area);
     // 2×2 quads, as the reference walks them, start at the top-left pixel of the triangle's box
     // (BinManager::Range: the vertices' pixel floor, scissor applied): the level of detail and the
     // slope-mode W come from each quad's pixels.
@@ -347,12 +410,12 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
         s64 xl = px1, xr = px2;
         bool empty = false;
         for (int i = 0; i < 3; ++i) {
-            K[i] = A[i] * kTriSample + B[i] * cy + C[i];
-            step[i] = 16 * A[i];
+            K[i] = tw.A[i] * kTriSample + tw.B[i] * cy + tw.C[i];
+            step[i] = 16 * tw.A[i];
             // Solve step·x + K ≥ thr for x.
-            if (step[i] > 0) xl = std::max(xl, ceilDiv(thr[i] - K[i], step[i]));
-            else if (step[i] < 0) xr = std::min(xr, floorDiv(K[i] - thr[i], -step[i]));
-            else if (K[i] < thr[i]) empty = true;
+            if (step[i] > 0) xl = std::max(xl, ceilDiv(tw.thr[i] - K[i], step[i]));
+            else if (step[i] < 0) xr = std::min(xr, floorDiv(K[i] - tw.thr[i], -step[i]));
+            else if (K[i] < tw.thr[i]) empty = true;
         }
         if (empty || xl > xr) continue;
 
@@ -360,69 +423,22 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
         int quadX = INT_MIN;
         float lod = 0.0f, quadW = 1.0f;
         for (s64 x = xl; x <= xr; ++x) {
-            const s64 e0 = step[0] * x + K[0], e1 = step[1] * x + K[1], e2 = step[2] * x + K[2];
             Fragment& f = sink.next();
             f.x = int(x);
             f.y = y;
             float fw0, fw1, fw2;
-            orderWeights(e0, e1, e2, fw0, fw1, fw2);
-            if (zConst) {
-                f.z = u16(v[0]->z);
-            } else {
-                // Depth as the reference interpolates it (PPSSPP Rasterizer.cpp DrawTriangleSlice):
-                // (E0·z0 + E1·z1 + E2·z2)·(1/area) in single precision, attribute order, converted
-                // with Vec4<float>::Cast<int>, which on x86-64 is cvtps2dq: round to nearest, ties
-                // to even (not truncation). Coplanar geometry drawn twice (decals, Coded Arms' grate
-                // over its lava under GEQUAL) z-fights exactly where these roundings decide; an
-                // integer depth plane and float with truncation both lose against the references
-                // (docs/accuracy.md).
-                const float zf = interpolateF(oz[0], oz[1], oz[2], fw0, fw1, fw2, wsumRecip);
-                const float zr = std::nearbyint(zf);  // default rounding mode: nearest, ties to even
-                f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));
-            }
-            if (colConst) {
-                std::memcpy(f.color, cs.color, 4);
-            } else {
-                for (int c = 0; c < 4; ++c)
-                    f.color[c] = interpolateColor(o[0]->color[c], o[1]->color[c], o[2]->color[c], fw0, fw1, fw2, wsumRecip);
-            }
-            if (secConst) {
-                std::memcpy(f.secondary, cs.secondary, 3);
-            } else {
-                for (int c = 0; c < 3; ++c)
-                    f.secondary[c] =
-                        interpolateColor(o[0]->secondary[c], o[1]->secondary[c], o[2]->secondary[c], fw0, fw1, fw2, wsumRecip);
-            }
-            if (fogConst) {
-                f.fog = fogValue;
-            } else {
-                f.fog = fogToByte(interpolateF(o[0]->fog, o[1]->fog, o[2]->fog, fw0, fw1, fw2, wsumRecip));
-            }
+            tw.orderWeights(step[0] * x + K[0], step[1] * x + K[1], step[2] * x + K[2], fw0, fw1, fw2);
+            tw.shade(f, fw0, fw1, fw2);
             if (rp.textured || rp.needW) {
                 const int qx = quadX0 + ((int(x) - quadX0) & ~1);
                 if ((rp.needLod || rp.needW) && qx != quadX) {
                     quadX = qx;
-                    // The quad's top-left, top-right and bottom-left pixels (also outside the
-                    // triangle: the edge functions are planes).
-                    float a0, a1, a2;
-                    orderWeights(evalE(0, qx, qy), evalE(1, qx, qy), evalE(2, qx, qy), a0, a1, a2);
-                    if (rp.needLod) {
-                        float b0, b1, b2, c0, c1, c2, s00, t00, s10, t10, s01, t01;
-                        orderWeights(evalE(0, qx + 1, qy), evalE(1, qx + 1, qy), evalE(2, qx + 1, qy), b0, b1, b2);
-                        orderWeights(evalE(0, qx, qy + 1), evalE(1, qx, qy + 1), evalE(2, qx, qy + 1), c0, c1, c2);
-                        texAt(a0, a1, a2, s00, t00);
-                        texAt(b0, b1, b2, s10, t10);
-                        texAt(c0, c1, c2, s01, t01);
-                        lod = lodFromStepsF(rp, s10 - s00, t01 - t00);
-                    }
-                    // Slope mode: clip W screen-linear at the quad's top-left pixel (the
-                    // reference's "one value for the slope").
-                    if (rp.needW) quadW = interpolateF(ocw[0], ocw[1], ocw[2], a0, a1, a2, wsumRecip);
+                    tw.quadValues(qx, qy, lod, quadW);
                 }
             }
             if (rp.textured) {
                 float s, t;
-                texAt(fw0, fw1, fw2, s, t);
+                tw.texAt(fw0, fw1, fw2, s, t);
                 f.s = finiteOr0(s);
                 f.t = finiteOr0(t);
                 f.lod = rp.needLod ? lod : 0.0f;
