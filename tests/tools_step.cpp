@@ -66,7 +66,7 @@ TEST(Step, BreakOnDrawNGivesTheFrameOfReplayEndN) {
 
 TEST(Step, ReadOutsHoldWhatTheSceneSent) {
     // clut_dxt_sprites: its third draw is a 52x52 sprite from (4, 10) with a swizzled 32x32 CLUT4
-    // texture and a 4444 palette (the scene's source: tools/make_scenes.cpp).
+    // texture and a 4444 palette (the scene's source: tools/scenes/clut_dxt_sprites.cpp).
     tools::StepOptions so;
     so.breakAt = "draw:3";
     so.outDir = (fs::temp_directory_path() / ("ge2gl_step_" + std::to_string(::getpid()))).string();
