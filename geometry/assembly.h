@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Primitive assembly shared by the software model (softmodel/soft_renderer.cpp) and the GL translator
-// (translator/vertex_pipeline.cpp), so that both backends build the same primitives from a draw:
+// Primitive assembly, the part of the draw front end (draw_front_end.h) that both backends run:
 // the walk over a PRIM's vertices (assemblePrimitives), the corners of rectangles drawn as
 // triangles, and strip/fan-as-rectangle detection.
 //

@@ -10,13 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "geometry/assembly.h"
-#include "geometry/clip.h"
+#include "geometry/draw_front_end.h"
 #include "geometry/raster.h"
-#include "geometry/spline.h"
-#include "geometry/texture_size.h"
-#include "geometry/transform.h"
-#include "hle/vertex_decoder.h"
 #include "softmodel/pixel.h"
 
 namespace ge::soft {
@@ -135,29 +130,9 @@ VramRange vramRange(u32 addr, u64 bytes) {
     return {off, u32(end)};
 }
 
-geo::RasterParams makeRasterParams(const GeState& st, bool through, bool textured) {
-    geo::RasterParams rp;
-    // Scissor ∩ REGION2 (ge-rules.md §8.6; REGION1 is kept 0 by games).
-    rp.clipX1 = int(st.SCISSOR1_x());
-    rp.clipY1 = int(st.SCISSOR1_y());
-    rp.clipX2 = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
-    rp.clipY2 = int(std::min(st.SCISSOR2_y(), st.REGION2_y()));
-    // Clear mode draws flat: colour from the provoking vertex (PPSSPP's software renderer).
-    rp.gouraud = st.SHADE_gouraud() && !st.isClearMode();
-    rp.textured = textured && !st.isClearMode();
-    const u32 levelMode = st.TLEVEL_mode();
-    rp.needLod = rp.textured && levelMode == 0;
-    rp.needW = rp.textured && levelMode == 2;
-    rp.fog = !through && st.FGE_on();
-    rp.through = through;
-    rp.texW0 = float(geo::texCoordWidth(st, 0));  // unclamped 2^n (geometry/texture_size.h)
-    rp.texH0 = float(geo::texCoordHeight(st, 0));
-    return rp;
-}
-
 }  // namespace
 
-struct SoftRenderer::Impl {
+struct SoftRenderer::Impl final : geo::PrimitiveSink {
     Impl(Memory& m, const SoftOptions& opt) : mem(m), cache(createTextureCache()) {
         int n = opt.threads;
         if (n <= 0) n = int(std::thread::hardware_concurrency());
@@ -319,20 +294,6 @@ struct SoftRenderer::Impl {
     }
 
     // ---- per draw ----
-    // Whether every primary colour of the assembled primitives that reaches a fragment has alpha
-    // 255: all vertices with Gouraud shading, the provoking one with flat shading and for
-    // rectangles (as the reference's CalculateRasterStateFlags reads them).
-    bool colorsReachingFragmentsFullAlpha(const geo::RasterParams& rp) const {
-        for (const RasterPrim& p : scratchPrims) {
-            if (scratchVerts[p.prov].color[3] != 255) return false;
-            if (!rp.gouraud || p.kind == geo::PrimKind::Rect) continue;
-            const int n = p.kind == geo::PrimKind::Triangle ? 3 : (p.kind == geo::PrimKind::Line ? 2 : 1);
-            for (int k = 0; k < n; ++k)
-                if (scratchVerts[p.v[k]].color[3] != 255) return false;
-        }
-        return true;
-    }
-
     // Queues the primitives assembled in `scratch` as one draw with the given state.
     void queueDraw(const GeState& st, const geo::RasterParams& rp, bool textured, bool forceRebuild) {
         if (scratchPrims.empty()) return;
@@ -344,7 +305,7 @@ struct SoftRenderer::Impl {
         // Before the pixel state is built: sending the batch off may retire one whose writes
         // invalidate cached textures.
         noteTarget(targetOf(st, rp));
-        const bool alphaFull = colorsReachingFragmentsFullAlpha(rp);
+        const bool alphaFull = frontEnd.drawAlphaFull();
         if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured ||
             alphaFull != psAlphaFull) {
             ps = buildPixelState(st, mem, *cache, textured, alphaFull);
@@ -367,237 +328,48 @@ struct SoftRenderer::Impl {
         }
         d.primEnd = u32(b.prims.size());
         b.draws.push_back(std::move(d));
-        stats.primitives += scratchPrims.size();
         if (b.prims.size() >= kBatchPrimitives || b.verts.size() >= kBatchVertices) submit();
     }
 
-    // ---- primitive assembly (into scratchVerts / scratchPrims) ----
-    u32 pushVertex(u32 ci) {
-        if (vertIndex[ci] < 0) {
-            vertIndex[ci] = s32(scratchVerts.size());
-            scratchVerts.push_back(cverts[ci].sv);
-        }
-        return u32(vertIndex[ci]);
-    }
-    u32 pushNew(const geo::ScreenVertex& sv) {
-        scratchVerts.push_back(sv);
-        return u32(scratchVerts.size() - 1);
-    }
-    void addPrim(geo::PrimKind kind, u32 a, u32 b, u32 c, u32 prov) {
-        RasterPrim p;
-        p.kind = kind;
-        p.v[0] = a, p.v[1] = b, p.v[2] = c;
-        p.prov = prov;
-        const geo::ScreenVertex* v[3] = {&scratchVerts[a], &scratchVerts[b], &scratchVerts[c]};
-        if (!geo::primitiveRows(rp, kind, v, p.y1, p.y2)) return;  // wholly outside the clip rectangle
-        const u64 bound = geo::primitivePixelBound(rp, kind, v, p.y1, p.y2);
-        if (bound > pixelBudgetLeft) {  // the GE-time limit reached into this draw: dropped,
-            pixelBudgetLeft = 0;        // but charged, so the engine sees the limit passed
-            pixelWork += bound;
-            ++stats.budgetDropped;
-            return;
-        }
-        pixelBudgetLeft -= bound;
-        pixelWork += bound;
-        scratchPrims.push_back(p);
-    }
-
-    // Back-face culling (ge-rules.md §3.6): CULL = 0 culls triangles clockwise on screen (y down), 1 counter-
-    // clockwise ones. Zero-area triangles are never culled: the rasteriser draws the samples they
-    // pass through as the reference does (raster.cpp rasterZeroAreaTriangle).
-    bool culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c) const {
-        const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
-        if (!cullOn || area == 0) return false;
-        return cullClockwise ? area > 0 : area < 0;
-    }
-
-    // A triangle in primitive order; the third vertex is the provoking one (ge-rules.md §8.1).
-    // `ring`, when given, is the order the vertices are handed to the rasteriser in (see assemble);
-    // (ia, ib, ic) is the winding order used for culling and clipping.
-    void triangle(u32 ia, u32 ib, u32 ic, const u32* ring = nullptr) {
-        const geo::ClipVertex& a = cverts[ia];
-        const geo::ClipVertex& b = cverts[ib];
-        const geo::ClipVertex& c = cverts[ic];
-        const geo::ClipVertex* v[3] = {&a, &b, &c};
-        if (!a.valid || !b.valid || !c.valid || geo::discardPrimitive(*ts, v, 3)) {
-            ++stats.discarded;
-            return;
-        }
-        if (!ts->through) {
-            if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) {  // ge-rules.md §8.5
-                ++stats.discarded;
-                return;
-            }
-            // Near clipping whatever CLE says: CLE selects only the depth clamp and the discard
-            // rule (ge-rules.md §8.5; PPSSPP Clipper::ProcessTriangle).
-            if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
-                // Clipped in the reference's vertex order (the strip/fan ring, clip.h).
-                const bool reversed = ring && geo::ringReversed(ring, ia, ib);
-                geo::ClipVertex poly[4];
-                const int n = ring ? geo::clipTriangleNear(*ts, cverts[ring[0]], cverts[ring[1]], cverts[ring[2]], poly)
-                                   : geo::clipTriangleNear(*ts, a, b, c, poly);
-                ++stats.clipped;
-                if (n < 3) return;
-                // Flat shading keeps the original provoking vertex's colour.
-                const u32 prov = pushVertex(ic);
-                u32 idx[4];
-                bool pushed[4] = {};
-                for (int k = 1; k + 1 < n; ++k) {
-                    const int k1 = reversed ? k + 1 : k, k2 = reversed ? k : k + 1;  // primitive's winding
-                    if (culled(poly[0].sv, poly[k1].sv, poly[k2].sv)) {
-                        ++stats.culled;
-                        continue;
-                    }
-                    for (int j : {0, k, k + 1}) {
-                        if (!pushed[j]) idx[j] = pushNew(poly[j].sv), pushed[j] = true;
-                    }
-                    addPrim(geo::PrimKind::Triangle, idx[0], idx[k], idx[k + 1], prov);
-                }
-                return;
-            }
-        }
-        if (culled(a.sv, b.sv, c.sv)) {
-            ++stats.culled;
-            return;
-        }
-        if (ring) {
-            addPrim(geo::PrimKind::Triangle, pushVertex(ring[0]), pushVertex(ring[1]), pushVertex(ring[2]), pushVertex(ic));
-        } else {
-            addPrim(geo::PrimKind::Triangle, pushVertex(ia), pushVertex(ib), pushVertex(ic), pushVertex(ic));
-        }
-    }
-
-    void line(u32 ia, u32 ib) {
-        const geo::ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
-        if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(*ts, v, 2)) {
-            ++stats.discarded;
-            return;
-        }
-        if (!ts->through && (geo::beyondNear(*v[0]) || geo::beyondNear(*v[1]))) {  // whatever CLE says (ge-rules.md §8.5)
-            geo::ClipVertex a = *v[0], b = *v[1];
-            ++stats.clipped;
-            if (!geo::clipLineNear(*ts, a, b)) return;
-            const u32 i0 = pushNew(a.sv), i1 = pushNew(b.sv);
-            addPrim(geo::PrimKind::Line, i0, i1, i1, i1);
-            return;
-        }
-        const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
-        addPrim(geo::PrimKind::Line, i0, i1, i1, i1);
-    }
-
-    void point(u32 ia) {
-        const geo::ClipVertex* v[1] = {&cverts[ia]};
-        if (!v[0]->valid || geo::discardPrimitive(*ts, v, 1)) {
-            ++stats.discarded;
-            return;
-        }
-        const u32 i = pushVertex(ia);
-        addPrim(geo::PrimKind::Point, i, i, i, i);
-    }
-
-    void rectangle(u32 ia, u32 ib) {
-        const geo::ClipVertex* v[2] = {&cverts[ia], &cverts[ib]};
-        if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(*ts, v, 2)) {
-            ++stats.discarded;
-            return;
-        }
-        if (ts->rectAsTriangles) {
-            rectangleAsTriangles(v[0]->sv, v[1]->sv);
-            return;
-        }
-        const u32 i0 = pushVertex(ia), i1 = pushVertex(ib);
-        addPrim(geo::PrimKind::Rect, i0, i1, i1, i1);
-    }
-
-    // Rectangles with texture projection are drawn as two triangles (ge-rules.md §8.2), corners textured by
-    // the orientation table, colour/Z/fog of the second vertex.
-    void rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
-        if (v0.x == v1.x || v0.y == v1.y) return;
-        const u32 tl = pushNew(geo::rectangleCorner(v0, v1, 0, 0)), tr = pushNew(geo::rectangleCorner(v0, v1, 1, 0));
-        const u32 bl = pushNew(geo::rectangleCorner(v0, v1, 0, 1)), br = pushNew(geo::rectangleCorner(v0, v1, 1, 1));
-        addPrim(geo::PrimKind::Triangle, tl, tr, bl, bl);
-        addPrim(geo::PrimKind::Triangle, tr, br, bl, bl);
-    }
-
-    // Strip/fan quads drawn as rectangles (geometry/assembly.h, shared with the GL translator):
-    // `tl`/`br` get the top-left and bottom-right vertices (the rectangle's v0 and v1).
-    bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
-        const geo::ClipVertex* d[4] = {&cverts[q[0]], &cverts[q[1]], &cverts[q[2]], &cverts[q[3]]};
-        int itl = 0, ibr = 0;
-        const bool rect = fan ? geo::fanQuadAsRect(rectDetect, d, itl, ibr) : geo::stripQuadAsRect(rectDetect, d, itl, ibr);
-        if (!rect) return false;
-        tl = q[itl], br = q[ibr];
-        return true;
-    }
-
-    // Assembles `seq` (indices into cverts, in draw order) as `prim` (assembly.h); what does not
-    // complete a primitive, and the strip/fan state, is kept in `pending` for PRIM type 7 (ge-rules.md §3.2,
-    // §8.11).
-    void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-        geo::assemblePrimitives(prim, seq, rectDetect.allowed && !cullOn, stripOdd, *this, keepScratch);
-        if (keepPending) {
-            pending.clear();
-            for (u32 k : keepScratch) pending.push_back(cverts[k]);
-        }
-    }
-
-    void beginAssembly(const geo::TransformState& t, const geo::RasterParams& r, bool cull, bool cullCw) {
-        ts = &t;
-        rp = r;
-        cullOn = cull;
-        cullClockwise = cullCw;
+    // ---- the draw front end's sink (geometry/draw_front_end.h): into scratchVerts / scratchPrims ----
+    void beginDraw() {
         scratchVerts.clear();
         scratchPrims.clear();
-        vertIndex.assign(cverts.size(), -1);
+        vertIndex.clear();
     }
-
-    // Decodes the vertices a draw uses (each distinct one once) into cverts after `first`
-    // entries already there, and the draw order into `seq`. False on unreadable data.
-    bool decodeDraw(const GeState& st, u32 vtype, u32 vaddr, u32 iaddr, u32 count, const geo::TransformState& t,
-                    std::vector<u32>& seq) {
-        VertexReader reader(mem, st, vtype);
-        if (!reader.readIndices(iaddr, count, indices)) return false;
-        const bool skin = reader.hasWeights() && !reader.through();
-        const size_t first = cverts.size();
-        bool anyBad = false;
-        auto process = [&](u32 index, geo::ClipVertex& out) {
-            DecodedVertex dv;
-            bool ok = reader.read(vaddr, index, dv);
-            anyBad |= !ok;
-            if (ok && skin) applySkinning(st, vtype, dv);
-            geo::transformVertex(t, dv, out);
-            out.valid = ok && reader.hasPosition();  // no position: dropped (ge-rules.md §8.11)
-        };
-        u32 lo = ~0u, hi = 0;
-        for (u32 i : indices) lo = std::min(lo, i), hi = std::max(hi, i);
-        seq.clear();
-        if (indices.empty()) return true;
-        if (u64(hi) - lo < u64(count) * 2 + 64) {
-            // Dense index range: transform each vertex of the range once.
-            cverts.resize(first + (hi - lo + 1));
-            std::vector<u8> used(hi - lo + 1, 0);
-            for (u32 i : indices) used[i - lo] = 1;
-            for (u32 k = 0; k <= hi - lo; ++k)
-                if (used[k]) process(lo + k, cverts[first + k]);
-            for (u32 i : indices) seq.push_back(u32(first + (i - lo)));
-            stats.vertices += std::count(used.begin(), used.end(), u8(1));
-        } else {
-            cverts.resize(first + indices.size());
-            for (size_t k = 0; k < indices.size(); ++k) {
-                process(indices[k], cverts[first + k]);
-                seq.push_back(u32(first + k));
-            }
-            stats.vertices += indices.size();
+    // A vertex of the primitive: one of the draw's transformed vertices is stored once however
+    // many primitives use it; a vertex made by the front end (clipping, rectangle corners) once
+    // per primitive.
+    u32 vertexOf(const geo::Primitive& p, int k) {
+        const geo::ScreenVertex* sv = k < 3 ? p.v[k] : p.prov;
+        const s32 id = k < 3 ? p.id[k] : p.provId;
+        if (id < 0) {
+            for (int j = 0; j < k; ++j)
+                if (p.v[j] == sv) return primVerts[j];
+            scratchVerts.push_back(*sv);
+            return u32(scratchVerts.size() - 1);
         }
-        if (anyBad) ++stats.badDraws;  // drawn without the unreadable vertices
-        return true;
+        if (size_t(id) >= vertIndex.size()) vertIndex.resize(size_t(id) + 1, -1);
+        if (vertIndex[size_t(id)] < 0) {
+            vertIndex[size_t(id)] = s32(scratchVerts.size());
+            scratchVerts.push_back(*sv);
+        }
+        return u32(vertIndex[size_t(id)]);
+    }
+    void primitive(const geo::Primitive& p) override {
+        if (!p.inside) return;  // covers no pixel: nothing to rasterise
+        RasterPrim r;
+        r.kind = p.kind;
+        for (int k = 0; k < 4; ++k) primVerts[k] = vertexOf(p, k);
+        r.v[0] = primVerts[0], r.v[1] = primVerts[1], r.v[2] = primVerts[2];
+        r.prov = primVerts[3];
+        r.y1 = p.y1, r.y2 = p.y2;
+        scratchPrims.push_back(r);
     }
 
     Memory& mem;
     TextureCachePtr cache;
     SoftStats stats;
-    u64 pixelWork = 0;  // Renderer::pixelWork: bounding boxes of the primitives queued
-    u64 pixelBudgetLeft = ~u64(0);  // Renderer::setPixelBudget
     int threads = 1;
 
     Batch batches[2];
@@ -616,63 +388,34 @@ struct SoftRenderer::Impl {
     bool psValid = false, psThrough = false, psTextured = false, psAlphaFull = false;
     u32 pendingDirty = DIRTY_ALL;
 
-    // Assembly state of the draw being built.
-    const geo::TransformState* ts = nullptr;
-    geo::RasterParams rp;
-    bool cullOn = false, cullClockwise = false;
-    std::vector<geo::ClipVertex> cverts;
-    std::vector<s32> vertIndex;
+    // The draw being built: the front end's primitives with their vertices.
+    geo::DrawFrontEnd frontEnd;
+    std::vector<s32> vertIndex;  // the front end's vertex id → scratchVerts index, -1: not yet stored
     std::vector<geo::ScreenVertex> scratchVerts;
     std::vector<RasterPrim> scratchPrims;
-    std::vector<u32> indices, seq;
-    // PRIM type 7 continuation: the transformed vertices still open, and the strip parity.
-    std::vector<geo::ClipVertex> pending;
-    std::vector<u32> keepScratch;  // assemble's continuation indices (reused)
-    bool stripOdd = false;
-    // Strip/fan-as-rectangle detection (assembly.h) for the PRIM being assembled: allowed only for
-    // a fresh PRIM (no open vertices), with what the comparison needs from the state.
-    geo::RectDetect rectDetect;
+    u32 primVerts[4] = {};
 };
 
 SoftRenderer::SoftRenderer(Memory& mem, const SoftOptions& opt) : impl_(std::make_unique<Impl>(mem, opt)) {}
 SoftRenderer::~SoftRenderer() = default;
 
 int SoftRenderer::threadCount() const { return impl_->threads; }
-const SoftStats& SoftRenderer::stats() const { return impl_->stats; }
+const SoftStats& SoftRenderer::stats() const {
+    SoftStats& s = impl_->stats;
+    const geo::FrontEndStats& f = impl_->frontEnd.stats();
+    s.vertices = f.vertices, s.primitives = f.primitives, s.culled = f.culled, s.discarded = f.discarded;
+    s.clipped = f.clipped, s.badDraws = f.badDraws, s.budgetDropped = f.budgetDropped;
+    return s;
+}
 
 void SoftRenderer::drawPrim(const PrimPacket& p) {
     Impl& I = *impl_;
     const GeState& st = *p.state;
     I.pendingDirty |= p.dirty;
     ++I.stats.draws;
-    if (!p.continuation) {
-        I.pending.clear();
-        I.stripOdd = false;
-    }
-    VertexReader probe(I.mem, st, p.vtype);
-    geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), /*hasNormal: the format's or the latched one*/ true);
-    ts.sprite = p.prim == GE_PRIM_RECTANGLES;
-    // The still-open vertices of the previous PRIM come first.
-    I.cverts.assign(I.pending.begin(), I.pending.end());
-    std::vector<u32>& seq = I.seq;
-    if (!I.decodeDraw(st, p.vtype, p.vertexAddr, p.indexAddr, p.count, ts, seq)) {
-        ++I.stats.badDraws;
-        I.pending.clear();
-        return;
-    }
-    std::vector<u32> full;
-    full.reserve(I.pending.size() + seq.size());
-    for (u32 i = 0; i < I.pending.size(); ++i) full.push_back(i);
-    full.insert(full.end(), seq.begin(), seq.end());
-
-    const bool textured = st.TME_on();
-    geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
-    rp.sprite = ts.sprite;
-    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    I.rectDetect = geo::RectDetect::fromState(st, ts.through, textured, I.pending.empty());
-    I.assemble(p.prim, full, true);
-    I.rectDetect.allowed = false;
-    I.queueDraw(st, rp, textured, false);
+    I.beginDraw();
+    if (!I.frontEnd.prim(I.mem, st, p, I, nullptr)) return;
+    I.queueDraw(st, I.frontEnd.rasterParams(), st.TME_on(), false);
 }
 
 void SoftRenderer::drawPatch(const PatchPacket& p) {
@@ -680,39 +423,9 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     const GeState& st = *p.state;
     I.pendingDirty |= p.dirty;
     ++I.stats.patches;
-    I.pending.clear();
-    I.stripOdd = false;
-    geo::TessOutput tess;
-    std::string err;
-    if (!geo::tessellatePatch(I.mem, st, p, tess, &err)) {
-        ++I.stats.badDraws;
-        return;
-    }
-    if (tess.verts.empty()) return;
-    VertexReader probe(I.mem, st, p.vtype);
-    // The tessellator generates normals when lighting needs them (ge-rules.md §3.2).
-    const bool hasNormal = probe.hasNormal() || st.LTE_on();
-    const geo::TransformState ts = geo::makeTransformState(st, p.vtype, probe.hasColor(), hasNormal);
-    I.cverts.resize(tess.verts.size());
-    for (size_t i = 0; i < tess.verts.size(); ++i) {
-        geo::transformVertex(ts, tess.verts[i], I.cverts[i]);
-        I.cverts[i].valid = true;
-    }
-    I.stats.vertices += tess.verts.size();
-    std::vector<u32>& seq = I.seq;
-    seq.clear();
-    for (u32 i : tess.indices)
-        if (i < tess.verts.size()) seq.push_back(i);
-
-    const bool textured = st.TME_on();
-    const geo::RasterParams rp = makeRasterParams(st, ts.through, textured);
-    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    // Patch culling (CMD_PCE, manual §11.2) removes patches outside the drawing region; the clip
-    // rectangle already includes REGION2, so those pixels are never drawn either way.
-    const bool odd = I.stripOdd;
-    I.assemble(tess.prim, seq, false);
-    I.stripOdd = odd;
-    I.queueDraw(st, rp, textured, false);
+    I.beginDraw();
+    if (!I.frontEnd.patch(I.mem, st, p, I, nullptr)) return;
+    I.queueDraw(st, I.frontEnd.rasterParams(), st.TME_on(), false);
 }
 
 void SoftRenderer::drawImmediate(const ImmPacket& p) {
@@ -720,35 +433,12 @@ void SoftRenderer::drawImmediate(const ImmPacket& p) {
     I.pendingDirty |= p.dirty;
     ++I.stats.immediates;
     if (p.vertices.empty()) return;
-    // The AP2 flags of the first vertex override shading, culling, texturing, fog, dither and
-    // antialiasing for this primitive (ge-rules.md §3.12): draw with a state copy that has them.
-    GeState st = *p.state;
-    auto setFlag = [&](GeCmd op, bool on) { st.regs[op] = (u32(op) << 24) | (on ? 1u : 0u); };
-    const u32 f = p.flags;
-    setFlag(GE_CMD_AAE, (f >> 11) & 1);
-    setFlag(GE_CMD_SHADE, (f >> 18) & 1);
-    setFlag(GE_CMD_BCE, (f >> 19) & 1);
-    setFlag(GE_CMD_CULL, (f >> 20) & 1);
-    setFlag(GE_CMD_TME, (f >> 21) & 1);
-    setFlag(GE_CMD_FGE, (f >> 22) & 1);
-    setFlag(GE_CMD_DTE, (f >> 23) & 1);
-
-    // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
-    geo::TransformState ts;
-    ts.through = true;
-    const bool through = st.isThrough();
-    std::vector<u32>& seq = I.seq;
-    geo::immediateVertices(st, p.vertices, I.cverts, seq);
-    const bool textured = st.TME_on();
-    geo::RasterParams rp = makeRasterParams(st, true, textured);
-    rp.fog = st.FGE_on() && !through;
-    I.beginAssembly(ts, rp, st.BCE_on() && !st.isClearMode(), !st.CULL_ccw());
-    const bool odd = I.stripOdd;
-    I.stripOdd = false;
-    I.assemble(p.prim, seq, false);
-    I.stripOdd = odd;
+    // Drawn with a state copy that has the first vertex's AP2 overrides (docs/ge-rules.md §3.12).
+    const GeState st = geo::immediateState(*p.state, p.flags);
+    I.beginDraw();
+    I.frontEnd.immediate(st, p, I);
     // The pixel state is built from the overridden copy and not reused by later draws.
-    I.queueDraw(st, rp, textured, true);
+    I.queueDraw(st, I.frontEnd.rasterParams(), st.TME_on(), true);
 }
 
 void SoftRenderer::blockTransfer(const TransferPacket& t, Memory& mem) {
@@ -795,8 +485,9 @@ void SoftRenderer::flushToMemory() { impl_->waitIdle(); }
 // Frame buffers are guest memory itself here; textures are re-hashed on next use.
 void SoftRenderer::hostMayHaveWritten(bool) { textureFlush(); }
 
-u64 SoftRenderer::pixelWork() const { return impl_->pixelWork; }
-void SoftRenderer::setPixelBudget(u64 pixels) { impl_->pixelBudgetLeft = pixels; }
+// The front end charges the pixel bounds of the primitives it hands on (geometry/draw_front_end.h).
+u64 SoftRenderer::pixelWork() const { return impl_->frontEnd.pixelWork(); }
+void SoftRenderer::setPixelBudget(u64 pixels) { impl_->frontEnd.setPixelBudget(pixels); }
 
 std::unique_ptr<ge::Renderer> createSoftRenderer(ge::Memory& mem, const SoftOptions& opt) {
     return std::make_unique<SoftRenderer>(mem, opt);

@@ -6,10 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "geometry/assembly.h"
-#include "geometry/clip.h"
-#include "geometry/spline.h"
-#include "geometry/texture_size.h"
 
 namespace ge::gl {
 
@@ -111,80 +107,34 @@ VertexSettings VertexSettings::fromState(const GeState& st) {
     return vs;
 }
 
-geo::RasterParams VertexPipeline::rasterParams() const {
-    geo::RasterParams rp;
-    rp.clipX1 = vs_.clip[0], rp.clipY1 = vs_.clip[1], rp.clipX2 = vs_.clip[2], rp.clipY2 = vs_.clip[3];
-    rp.gouraud = vs_.gouraud;
-    rp.textured = vs_.texture;
-    rp.needLod = vs_.texture && st_->TLEVEL_mode() == 0;
-    rp.needW = vs_.texture && st_->TLEVEL_mode() == 2;
-    rp.fog = vs_.fog;
-    rp.through = ts_.through;
-    rp.sprite = ts_.sprite;
-    rp.texW0 = float(geo::texCoordWidth(*st_, 0));  // unclamped 2^n (geometry/texture_size.h)
-    rp.texH0 = float(geo::texCoordHeight(*st_, 0));
-    return rp;
-}
-
-bool VertexPipeline::culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
-                            const geo::ScreenVertex& c) const {
-    // Positive area = clockwise on screen (y down); CULL 0 culls clockwise, 1 counter-clockwise
-    // (ge-rules.md §3.6). Zero-area triangles are never culled: they draw the samples they pass through,
-    // as in the software model (see emitTriangle).
-    const s64 area = s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x);
-    if (!vs_.cull || area == 0) return false;
-    return vs_.cullCcw ? area < 0 : area > 0;
-}
-
-bool VertexPipeline::notePrimitive(geo::PrimKind kind, const geo::ScreenVertex& a, const geo::ScreenVertex& b,
-                                   const geo::ScreenVertex& c, const geo::ScreenVertex& prov) {
-    const geo::ScreenVertex* v[3] = {&a, &b, &c};
-    int y1, y2;
-    const geo::RasterParams rp = rasterParams();
-    if (!geo::primitiveRows(rp, kind, v, y1, y2)) return true;  // wholly outside: draws nothing
-    const u64 bound = geo::primitivePixelBound(rp, kind, v, y1, y2);
-    if (bound > pixelBudgetLeft_) {  // the GE-time limit reached into this draw (as the software model):
-        pixelBudgetLeft_ = 0;        // dropped but charged
-        pixelWork_ += bound;
-        return false;
-    }
-    pixelBudgetLeft_ -= bound;
-    pixelWork_ += bound;
-    if (!alphaFull_) return true;
-    const bool perVertex = vs_.gouraud && kind != geo::PrimKind::Rect;
-    if (prov.color[3] != 255) alphaFull_ = false;
-    if (perVertex && (a.color[3] != 255 || b.color[3] != 255 || c.color[3] != 255)) alphaFull_ = false;
-    return true;
-}
-
 void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
                                   const geo::ScreenVertex& c, const geo::ScreenVertex& prov, int joinPrev) {
-    if (!notePrimitive(geo::PrimKind::Triangle, a, b, c, prov)) return;
+    const geo::RasterParams& rp = frontEnd_.rasterParams();
     if (s64(b.x - a.x) * (c.y - a.y) - s64(b.y - a.y) * (c.x - a.x) == 0) {
         // A zero-area triangle covers only samples exactly on its line, with the reference's
         // degenerate attributes (geometry/raster.cpp rasterZeroAreaTriangle): the software
         // rasteriser decides them and each becomes a one-pixel quad, as lines do.
         fragBuf_.resize(kFragmentBuffer);
         geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-        geo::rasterTriangle(rasterParams(), a, b, c, prov, geo::Band{}, sink);
+        geo::rasterTriangle(rp, a, b, c, prov, geo::Band{}, sink);
         sink.flush();
         return;
     }
-    const bool persp = !ts_.through;
+    const bool persp = !rp.through;
     GlVertex g[3] = {toGl(a, persp), toGl(b, persp), toGl(c, persp)};
     // The software rasteriser samples triangles at 16·x + o (raster.h triangleSampleOffset), GL
     // at the pixel centre 16·x + 8: moving the triangle by (8 − o)/16 pixel (exact in float on
     // the 1/16 grid) makes GL cover the same pixels.
     const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
     for (GlVertex& v : g) v.x += shift, v.y += shift;
-    if (!vs_.gouraud) {
+    if (!rp.gouraud) {
         // Flat shading: the provoking (last) vertex's colours (ge-rules.md §8.1).
         for (GlVertex& v : g) {
             std::memcpy(v.color, prov.color, 4);
             v.color2[0] = prov.secondary[0], v.color2[1] = prov.secondary[1], v.color2[2] = prov.secondary[2];
         }
     }
-    if (!vs_.records) {
+    if (!records_) {
         emitting(1);
         out_->tris.insert(out_->tris.end(), g, g + 3);
         PrimBounds bb = boundsOf(g, 3);
@@ -200,7 +150,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
     GlVertex grown[6];
     int n = growTriangle(g, grown);
     TriRecord rec;
-    packTriangle(rasterParams(), a, b, c, prov, rec);
+    packTriangle(rp, a, b, c, prov, rec);
     PrimBounds bb = boundsOf(grown, n);
     if (n == 6) {
         // A needle-thin triangle's bevelled hexagon, drawn as a fan, had sliver triangles (two
@@ -233,7 +183,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
 }
 
 void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
-    if (!notePrimitive(geo::PrimKind::Rect, v0, v1, v1, v1)) return;
+    const geo::RasterParams& rp = frontEnd_.rasterParams();
     const int xl = std::min(v0.x, v1.x), xr = std::max(v0.x, v1.x);
     const int yt = std::min(v0.y, v1.y), yb = std::max(v0.y, v1.y);
     if (xl == xr || yt == yb) return;  // zero-size rectangles draw nothing (ge-rules.md §8.11)
@@ -255,13 +205,13 @@ void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVert
         return toGl(c, false);
     };
     GlVertex tl = corner(0, 0), tr = corner(1, 0), bl = corner(0, 1), br = corner(1, 1);
-    if (vs_.records) {
+    if (records_) {
         // Exact interpolation: the record decides the covered pixels (rasterRectangle's far-edge
         // pair rule and clipping) and the shader the texture coordinates; the quad covers
         // exactly that pixel box.
         TriRecord rec;
         int box[4];
-        if (!packRectangle(rasterParams(), v0, v1, rec, box)) return;
+        if (!packRectangle(rp, v0, v1, rec, box)) return;
         emitting(2);
         tl.x = bl.x = float(box[0]), tr.x = br.x = float(box[2] + 1);
         tl.y = tr.y = float(box[1]), bl.y = br.y = float(box[3] + 1);
@@ -274,7 +224,7 @@ void VertexPipeline::emitRect(const geo::ScreenVertex& v0, const geo::ScreenVert
         // float positions at .5, found by `ge2gl fuzz --gl-mode hw`, seed 266). The quad is moved
         // to the reference's pixel box, its texture coordinates extended along the same linear map.
         geo::RectSetup rs;
-        if (!geo::rectangleSetup(rasterParams(), v0, v1, rs)) return;
+        if (!geo::rectangleSetup(rp, v0, v1, rs)) return;
         emitting(2);
         const GlVertex otl = tl, otr = tr, obl = bl, obr = br;
         auto at = [&](float x, float y) {
@@ -328,7 +278,7 @@ void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
         out_->triBounds.push_back(bb);
         bb.joinPrev = 1;
         out_->triBounds.push_back(bb);
-        if (vs_.records) {
+        if (records_) {
             out_->records.emplace_back();
             packFragment(f[i], out_->records.back());
             out_->records.push_back(out_->records.back());
@@ -336,248 +286,40 @@ void VertexPipeline::emitFragments(const geo::Fragment* f, size_t n) {
     }
 }
 
-void VertexPipeline::trimVertices() {
-    // A PRIM has at most 65,535 vertices; a patch's tessellation can have far more.
-    constexpr size_t kKeep = size_t(1) << 17;
-    if (cverts_.capacity() > kKeep) std::vector<geo::ClipVertex>().swap(cverts_);
-    if (seq_.capacity() > kKeep) std::vector<u32>().swap(seq_);
-}
-
-void VertexPipeline::triangle(u32 ia, u32 ib, u32 ic, const u32* ring) {
-    const geo::ClipVertex& a = cverts_[ia];
-    const geo::ClipVertex& b = cverts_[ib];
-    const geo::ClipVertex& c = cverts_[ic];
-    const geo::ClipVertex* v[3] = {&a, &b, &c};
-    if (!a.valid || !b.valid || !c.valid || geo::discardPrimitive(ts_, v, 3)) return;
-    if (!ts_.through) {
-        if (a.clip[3] < 0.0f && b.clip[3] < 0.0f && c.clip[3] < 0.0f) return;  // ge-rules.md §8.5
-        // Near clipping whatever CLE says, as the software model (ge-rules.md §8.5).
-        if (geo::beyondNear(a) || geo::beyondNear(b) || geo::beyondNear(c)) {
-            // Clipped in the reference's vertex order (the strip/fan ring, geometry/clip.h).
-            const bool reversed = ring && geo::ringReversed(ring, ia, ib);
-            geo::ClipVertex poly[4];
-            const int n = ring ? geo::clipTriangleNear(ts_, cverts_[ring[0]], cverts_[ring[1]], cverts_[ring[2]], poly)
-                               : geo::clipTriangleNear(ts_, a, b, c, poly);
-            int join = 0;
-            for (int k = 1; k + 1 < n; ++k) {
-                const int k1 = reversed ? k + 1 : k, k2 = reversed ? k : k + 1;  // primitive's winding
-                if (culled(poly[0].sv, poly[k1].sv, poly[k2].sv)) continue;
-                // Flat shading keeps the original provoking vertex's colour.
-                emitTriangle(poly[0].sv, poly[k].sv, poly[k + 1].sv, c.sv, join);
-                join = 1;
-            }
-            return;
-        }
+void VertexPipeline::primitive(const geo::Primitive& p) {
+    switch (p.kind) {
+        case geo::PrimKind::Triangle: emitTriangle(*p.v[0], *p.v[1], *p.v[2], *p.prov, p.joinPrev); return;
+        case geo::PrimKind::Rect: emitRect(*p.v[0], *p.v[1]); return;
+        case geo::PrimKind::Line:
+        case geo::PrimKind::Point: break;
     }
-    if (culled(a.sv, b.sv, c.sv)) return;
-    // `ring`: the order the software model hands the vertices to its rasteriser in (its float
-    // attribute sums depend on it); (a, b, c) is the winding for culling and clipping.
-    if (ring) emitTriangle(cverts_[ring[0]].sv, cverts_[ring[1]].sv, cverts_[ring[2]].sv, c.sv, 0);
-    else emitTriangle(a.sv, b.sv, c.sv, c.sv, 0);
-}
-
-void VertexPipeline::rectangle(u32 ia, u32 ib) {
-    const geo::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
-    if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(ts_, v, 2)) return;
-    if (ts_.rectAsTriangles) {
-        rectangleAsTriangles(v[0]->sv, v[1]->sv);
-        return;
-    }
-    emitRect(v[0]->sv, v[1]->sv);
-}
-
-void VertexPipeline::rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1) {
-    // Rectangles with texture projection are two triangles (ge-rules.md §8.2), as in the software model.
-    if (v0.x == v1.x || v0.y == v1.y) return;
-    const geo::ScreenVertex tl = geo::rectangleCorner(v0, v1, 0, 0), tr = geo::rectangleCorner(v0, v1, 1, 0);
-    const geo::ScreenVertex bl = geo::rectangleCorner(v0, v1, 0, 1), br = geo::rectangleCorner(v0, v1, 1, 1);
-    emitTriangle(tl, tr, bl, bl, 0);
-    emitTriangle(tr, br, bl, bl, 1);
-}
-
-bool VertexPipeline::quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const {
-    // The software model's rule (geometry/assembly.h, shared).
-    const geo::ClipVertex* d[4] = {&cverts_[q[0]], &cverts_[q[1]], &cverts_[q[2]], &cverts_[q[3]]};
-    int itl = 0, ibr = 0;
-    if (!(fan ? geo::fanQuadAsRect(rectDetect_, d, itl, ibr) : geo::stripQuadAsRect(rectDetect_, d, itl, ibr)))
-        return false;
-    tl = q[itl], br = q[ibr];
-    return true;
-}
-
-void VertexPipeline::line(u32 ia, u32 ib) {
-    const geo::ClipVertex* v[2] = {&cverts_[ia], &cverts_[ib]};
-    if (!v[0]->valid || !v[1]->valid || geo::discardPrimitive(ts_, v, 2)) return;
-    geo::ClipVertex a = *v[0], b = *v[1];
-    if (!ts_.through && (geo::beyondNear(a) || geo::beyondNear(b)))
-        if (!geo::clipLineNear(ts_, a, b)) return;
-    if (!notePrimitive(geo::PrimKind::Line, a.sv, b.sv, b.sv, b.sv)) return;
+    // Lines and points: the GE's DDA (shared with the software model) decides coverage, each
+    // fragment a one-pixel quad (emitFragments).
     fragBuf_.resize(kFragmentBuffer);
     geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-    geo::rasterLine(rasterParams(), a.sv, b.sv, geo::Band{}, sink);
+    if (p.kind == geo::PrimKind::Line) geo::rasterLine(frontEnd_.rasterParams(), *p.v[0], *p.v[1], geo::Band{}, sink);
+    else geo::rasterPoint(frontEnd_.rasterParams(), *p.v[0], geo::Band{}, sink);
     sink.flush();
-}
-
-void VertexPipeline::point(u32 ia) {
-    const geo::ClipVertex* v[1] = {&cverts_[ia]};
-    if (!v[0]->valid || geo::discardPrimitive(ts_, v, 1)) return;
-    if (!notePrimitive(geo::PrimKind::Point, v[0]->sv, v[0]->sv, v[0]->sv, v[0]->sv)) return;
-    fragBuf_.resize(kFragmentBuffer);
-    geo::FragmentSink sink(fragBuf_.data(), fragBuf_.size(), &VertexPipeline::sinkFlush, this);
-    geo::rasterPoint(rasterParams(), v[0]->sv, geo::Band{}, sink);
-    sink.flush();
-}
-
-void VertexPipeline::assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending) {
-    // The software model's walk (geometry/assembly.h), so both backends build the same
-    // primitives in the same vertex order.
-    std::vector<u32> keep;
-    geo::assemblePrimitives(prim, seq, rectDetect_.allowed && !vs_.cull, stripOdd_, *this, keep);
-    if (keepPending) {
-        pending_.clear();
-        for (u32 k : keep) pending_.push_back(cverts_[k]);
-        pendingPrim_ = prim;
-    }
 }
 
 bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
                                  Geometry& out, std::string* err) {
-    st_ = &st;
-    vs_ = vs;
+    records_ = vs.records;
     out_ = &out;
-    alphaFull_ = true;
-    if (!p.continuation) {
-        pending_.clear();
-        stripOdd_ = false;
-    }
-    VertexReader reader(mem, st, p.vtype);
-    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
-    ts_.sprite = p.prim == GE_PRIM_RECTANGLES;
-    // The still-open vertices of the previous PRIM come first (type 7, ge-rules.md §3.2).
-    cverts_.assign(pending_.begin(), pending_.end());
-    std::vector<u32> indices;
-    if (!reader.readIndices(p.indexAddr, p.count, indices)) {
-        if (err) *err = "unreadable index data";
-        pending_.clear();
-        return false;
-    }
-    const bool skin = reader.hasWeights() && !reader.through();
-    auto process = [&](u32 index, geo::ClipVertex& cv) {
-        DecodedVertex dv;
-        const bool ok = reader.read(p.vertexAddr, index, dv);
-        if (ok && skin) applySkinning(st, p.vtype, dv);
-        geo::transformVertex(ts_, dv, cv);
-        cv.valid = ok && reader.hasPosition();  // no position: dropped (ge-rules.md §8.11)
-    };
-    seq_.clear();
-    for (u32 i = 0; i < pending_.size(); ++i) seq_.push_back(i);
-    if (!indices.empty()) {
-        u32 lo = ~0u, hi = 0;
-        for (u32 i : indices) lo = std::min(lo, i), hi = std::max(hi, i);
-        const size_t first = cverts_.size();
-        if (u64(hi) - lo < u64(p.count) * 2 + 64) {
-            // Dense index range: each used vertex transformed once.
-            std::vector<u8> used(size_t(hi - lo) + 1, 0);
-            for (u32 i : indices) used[i - lo] = 1;
-            cverts_.resize(first + used.size());
-            for (size_t k = 0; k < used.size(); ++k)
-                if (used[k]) process(lo + u32(k), cverts_[first + k]);
-            for (u32 i : indices) seq_.push_back(u32(first + (i - lo)));
-        } else {
-            cverts_.resize(first + indices.size());
-            for (size_t k = 0; k < indices.size(); ++k) {
-                process(indices[k], cverts_[first + k]);
-                seq_.push_back(u32(first + k));
-            }
-        }
-    }
-    rectDetect_ = geo::RectDetect::fromState(st, ts_.through, st.TME_on(), pending_.empty());
-    assemble(p.prim, seq_, true);
-    rectDetect_.allowed = false;
-    return true;
-}
-
-void VertexPipeline::keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p) {
-    pending_.clear();
-    stripOdd_ = false;
-    pendingPrim_ = p.prim;
-    VertexReader reader(mem, st, p.vtype);
-    std::vector<u32> indices;
-    if (!reader.readIndices(p.indexAddr, p.count, indices)) return;
-    const size_t n = indices.size();
-    // geometry/assembly.h assemblePrimitives' `keep` for a fresh PRIM without rectangle detection
-    // (GPU draws never have it): list leftovers, the strip's last two (parity flipped per
-    // triangle), the fan's centre and last vertex.
-    std::vector<size_t> open;
-    switch (p.prim) {
-        case GE_PRIM_TRIANGLES:
-            for (size_t i = n - n % 3; i < n; ++i) open.push_back(i);
-            break;
-        case GE_PRIM_TRIANGLE_STRIP:
-            for (size_t i = n > 2 ? n - 2 : 0; i < n; ++i) open.push_back(i);
-            stripOdd_ = n > 2 && ((n - 2) & 1);
-            break;
-        case GE_PRIM_TRIANGLE_FAN:
-            if (n >= 2) open = {0, n - 1};
-            else if (n == 1) open = {0};
-            break;
-        default: return;
-    }
-    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
-    const bool skin = reader.hasWeights() && !reader.through();
-    for (size_t i : open) {
-        DecodedVertex dv;
-        geo::ClipVertex cv;
-        const bool ok = reader.read(p.vertexAddr, indices[i], dv);
-        if (ok && skin) applySkinning(st, p.vtype, dv);
-        geo::transformVertex(ts_, dv, cv);
-        cv.valid = ok && reader.hasPosition();
-        pending_.push_back(cv);
-    }
+    return frontEnd_.prim(mem, st, p, *this, err);
 }
 
 bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
                                   Geometry& out, std::string* err) {
-    st_ = &st;
-    vs_ = vs;
+    records_ = vs.records;
     out_ = &out;
-    alphaFull_ = true;
-    pending_.clear();
-    geo::TessOutput tess;
-    if (!geo::tessellatePatch(mem, st, p, tess, err)) return false;
-    if (tess.verts.empty()) return true;
-    VertexReader reader(mem, st, p.vtype);
-    // The tessellator generates normals when lighting needs them (ge-rules.md §3.2).
-    ts_ = geo::makeTransformState(st, p.vtype, reader.hasColor(), reader.hasNormal() || st.LTE_on());
-    cverts_.resize(tess.verts.size());
-    for (size_t i = 0; i < tess.verts.size(); ++i) {
-        geo::transformVertex(ts_, tess.verts[i], cverts_[i]);
-        cverts_[i].valid = true;
-    }
-    seq_.clear();
-    for (u32 i : tess.indices)
-        if (i < tess.verts.size()) seq_.push_back(i);
-    const bool odd = stripOdd_;
-    stripOdd_ = false;
-    assemble(tess.prim, seq_, false);
-    stripOdd_ = odd;
-    trimVertices();
-    return true;
+    return frontEnd_.patch(mem, st, p, *this, err);
 }
 
 void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out) {
-    st_ = &st;
-    vs_ = vs;
+    records_ = vs.records;
     out_ = &out;
-    alphaFull_ = true;
-    // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
-    ts_ = geo::TransformState{};
-    ts_.through = true;
-    geo::immediateVertices(st, p.vertices, cverts_, seq_);
-    const bool odd = stripOdd_;
-    stripOdd_ = false;
-    assemble(p.prim, seq_, false);
-    stripOdd_ = odd;
+    frontEnd_.immediate(geo::immediateState(st, p.flags), p, *this);
 }
 
 }  // namespace ge::gl

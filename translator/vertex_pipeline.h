@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// CPU vertex processing for the GL path: decode (shared decoder), then the reference transform,
-// lighting, texture-coordinate generation, fog, clipping and discard rules the software model runs
-// too (geometry/transform.h, clip.h), then primitive assembly (geometry/assembly.h) into GL-ready
-// vertices in drawing coordinates.
+// CPU vertex processing for the GL path: the draw front end both backends run
+// (geometry/draw_front_end.h: decode, the reference transform, lighting, texture-coordinate
+// generation, fog, clipping and discard rules, primitive assembly), with this class as its sink,
+// turning each primitive into GL-ready vertices in drawing coordinates.
 //
 // Why on the CPU: the GE rounds screen positions to 1/16 pixel (docs/ge-rules.md §8.1), drops
 // rather than clips primitives outside the 4096² screen (ge-rules.md §8.5), lights in fixed point
@@ -10,10 +10,9 @@
 // (ge-rules.md §8.2) — none of which GL's own vertex processing does. The hardware mode's
 // generated vertex and geometry shaders (shadergen/hw_vertex.h) reproduce the first three for triangle,
 // strip and fan PRIMs sent to the GPU; everything else, and the exact mode, runs this code.
-// Sharing geometry/ with the software model keeps both backends' geometry identical
-// (style-anchors §8.8: one reference implementation). GL then only rasterises triangles, with
-// positions already on the GE's grid; its fill convention equals the GE's
-// top-left rule. Lines and points use the software model's rasteriser, geometry/raster.h (GL line
+// Sharing the front end with the software model keeps both backends' geometry identical. GL then
+// only rasterises triangles, with positions already on the GE's grid; its fill convention equals
+// the GE's top-left rule. Lines and points use the software model's rasteriser, geometry/raster.h (GL line
 // rules differ from the GE's DDA): each of their fragments becomes a one-pixel quad carrying that
 // fragment's exact attributes.
 #pragma once
@@ -21,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/assembly.h"
+#include "geometry/draw_front_end.h"
 #include "geometry/raster.h"
 #include "geometry/transform.h"
 #include "hle/ge_state.h"
@@ -94,7 +93,9 @@ struct VertexSettings {
     static VertexSettings fromState(const GeState& st);
 };
 
-class VertexPipeline {
+// The GL backend's sink of the shared draw front end (geometry/draw_front_end.h): each primitive
+// becomes GL triangles in drawing coordinates.
+class VertexPipeline : private geo::PrimitiveSink {
 public:
     // Decodes and processes a PRIM draw into `out` (appending). Returns false + err on bad
     // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ge-rules.md §3.2).
@@ -104,23 +105,21 @@ public:
     bool processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
                       Geometry& out, std::string* err);
     // A fresh triangle/strip/fan PRIM drawn elsewhere (the GPU vertex path): keeps what a PRIM
-    // type 7 continuation after it needs — its still-open vertices, transformed, and the strip
-    // parity — exactly as processPrim's walk would have left them (ge-rules.md §3.2).
-    void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p);
-    // Immediate vertices, already in drawing coordinates (ge-rules.md §3.12).
+    // type 7 continuation after it needs (geo::DrawFrontEnd::keepOpenVertices).
+    void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p) {
+        frontEnd_.keepOpenVertices(mem, st, p);
+    }
+    // Immediate vertices, already in drawing coordinates; the AP2 flags of the packet override
+    // the state (geo::immediateState, ge-rules.md §3.12). Of `vs` only `records` counts.
     void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
     // After a process* call: whether every primary colour of its primitives that reaches a
-    // fragment has alpha 255 (as the software model counts them: primitives not wholly outside
-    // the clip rectangle; all vertices with Gouraud shading, else the provoking one).
-    bool drawAlphaFull() const { return alphaFull_; }
+    // fragment has alpha 255 (geo::DrawFrontEnd::drawAlphaFull).
+    bool drawAlphaFull() const { return frontEnd_.drawAlphaFull(); }
     // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h),
     // plus, while the engine hands a pixel budget (a GE-time limit is set: dump replays), the
     // CPU side of the GL triangles built: kHostPixelsPerGlTriangle each.
-    u64 pixelWork() const { return pixelWork_; }
-    void setPixelBudget(u64 pixels) {
-        pixelBudgetLeft_ = pixels;
-        budgeted_ = pixels != ~u64(0);
-    }
+    u64 pixelWork() const { return frontEnd_.pixelWork(); }
+    void setPixelBudget(u64 pixels) { frontEnd_.setPixelBudget(pixels); }
     // GL triangles built on the CPU so far (one-pixel fragment quads count two), and the part of
     // pixelWork() charged for them.
     u64 glTriangles() const { return glTriangles_; }
@@ -143,67 +142,33 @@ public:
     }
 
 private:
-    void assemble(GePrimType prim, const std::vector<u32>& seq, bool keepPending);
-    // Primitive callbacks of geo::assemblePrimitives (the walk shared with the software model).
-    template <class Sink>
-    friend void geo::assemblePrimitives(GePrimType, const std::vector<u32>&, bool, bool&, Sink&, std::vector<u32>&);
-    void triangle(u32 a, u32 b, u32 c, const u32* ring = nullptr);
-    void rectangle(u32 a, u32 b);
-    void line(u32 a, u32 b);
-    void point(u32 a);
+    void primitive(const geo::Primitive& p) override;
     void emitTriangle(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c,
                       const geo::ScreenVertex& prov, int joinPrev);
     void emitRect(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1);
-    void rectangleAsTriangles(const geo::ScreenVertex& v0, const geo::ScreenVertex& v1);
-    bool quadAsRect(bool fan, const u32 q[4], u32& tl, u32& br) const;
     void emitFragments(const geo::Fragment* f, size_t n);
-    bool culled(const geo::ScreenVertex& a, const geo::ScreenVertex& b, const geo::ScreenVertex& c) const;
-    geo::RasterParams rasterParams() const;
-    // Per primitive the backend draws: its pixel bound (pixelWork) and its colours (drawAlphaFull).
-    // False: the pixel budget is used up, the primitive is dropped.
-    bool notePrimitive(geo::PrimKind kind, const geo::ScreenVertex& a, const geo::ScreenVertex& b,
-                       const geo::ScreenVertex& c, const geo::ScreenVertex& prov);
     static void sinkFlush(void* ctx, const geo::Fragment* f, size_t n);
     // `n` more GL triangles are about to be added to the output: it is handed on first when they
     // would not fit (setOutputLimit), and they are charged (kHostPixelsPerGlTriangle).
     void emitting(u64 n) {
         if (outFull_ && out_->triangles() + n > outLimit_) outFull_(outCtx_);
         glTriangles_ += n;
-        if (budgeted_) {  // no GE-time limit (a host's own GE): not charged
+        if (frontEnd_.budgeted()) {  // no GE-time limit (a host's own GE): not charged
             const u64 px = n * kHostPixelsPerGlTriangle;
-            pixelWork_ += px;
             hostPixels_ += px;
-            pixelBudgetLeft_ -= std::min(px, pixelBudgetLeft_);
+            frontEnd_.charge(px);
         }
     }
-    // Vertex arrays sized by one draw: given back after a draw far larger than usual.
-    void trimVertices();
 
+    geo::DrawFrontEnd frontEnd_;
     // Per-draw context (valid during one process* call).
-    const GeState* st_ = nullptr;
-    VertexSettings vs_;
-    geo::TransformState ts_;
+    bool records_ = false;
     Geometry* out_ = nullptr;
-    bool alphaFull_ = true;
-    u64 pixelWork_ = 0;
-    u64 pixelBudgetLeft_ = ~u64(0);
-    bool budgeted_ = false;  // the engine handed a pixel budget (a GE-time limit is set)
     u64 glTriangles_ = 0, hostPixels_ = 0;
     size_t outLimit_ = ~size_t(0);
     void (*outFull_)(void*) = nullptr;
     void* outCtx_ = nullptr;
-
-    std::vector<DecodedVertex> decoded_;
-    std::vector<geo::ClipVertex> cverts_;
-    std::vector<u32> seq_;
-    // PRIM type 7: vertices still open from the previous draw and the strip parity.
-    std::vector<geo::ClipVertex> pending_;
-    GePrimType pendingPrim_ = GE_PRIM_POINTS;
-    bool stripOdd_ = false;
     std::vector<geo::Fragment> fragBuf_;
-    // Strip/fan-as-rectangle detection, shared with the software model (geometry/assembly.h):
-    // allowed only for a fresh PRIM, with what the comparison needs from the state.
-    geo::RectDetect rectDetect_;
 };
 
 }  // namespace ge::gl
