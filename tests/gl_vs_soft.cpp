@@ -389,6 +389,37 @@ TEST(GlVsSoft, ImmediateSecondaryColourOnlyWithSeparateSpecularInTransformMode) 
     checkEveryBackend(immediateSecondaryScene, check);
 }
 
+// Clear mode draws flat whatever shading is asked for (geometry/draw_front_end.cpp
+// rasterParamsFor, after PPSSPP's software renderer), also when an immediate primitive's AP2 flags
+// ask for Gouraud shading (bit 18): one draw front end gives every backend the same rule. A
+// through-mode immediate triangle (0,0) red, (32,0) green, (0,32) blue, drawn in clear mode with
+// colour writes: every covered pixel takes the provoking (last) vertex's colour.
+void immediateClearModeScene(ListBuilder& b) {
+    frameSetup(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    b.setVertexType(vt::THROUGH);
+    b.cmd(GE_CMD_CMODE, (CLEAR_COLOR << 8) | 1);
+    const int pos[3][2] = {{0, 0}, {32, 0}, {0, 32}};
+    const u32 rgb[3] = {0x0000FF, 0x00FF00, 0xFF0000};
+    for (int k = 0; k < 3; ++k) {
+        b.cmd(GE_CMD_X2, 0x8000 + u32(pos[k][0] << 4));
+        b.cmd(GE_CMD_Y2, 0x8000 + u32(pos[k][1] << 4));
+        b.cmd(GE_CMD_Z2, 0);
+        b.cmd(GE_CMD_RGB2, rgb[k]);
+        b.cmd(GE_CMD_AP2, 0xFF | u32(k ? GE_PRIM_KEEP_PREVIOUS : GE_PRIM_TRIANGLES) << 8 | 1u << 18);
+    }
+    b.cmd(GE_CMD_CMODE, 0);  // any other command ends the immediate primitive
+}
+
+TEST(GlVsSoft, ImmediatePrimitivesInClearModeDrawFlat) {
+    checkEveryBackend(immediateClearModeScene, [](const std::vector<u8>& vram) {
+        auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 64 + size_t(x)) * 4]) & 0xFFFFFFu; };
+        for (const auto& [x, y] : {std::pair{1, 1}, {20, 2}, {2, 20}, {10, 10}})
+            EXPECT_EQ(rgb(x, y), 0xFF0000u) << x << "," << y;
+        EXPECT_EQ(rgb(40, 40), 0u);
+    });
+}
+
 // Transform-mode sprites reach the screen by the PSP's rule on every backend
 // (tests/sprite_position_scene.h; GL takes the CPU vertex path for rectangles in both modes).
 TEST(GlVsSoft, TransformModeSpritesRoundAsThePspDoes) {
