@@ -142,52 +142,70 @@ struct Surface {
             }
     }
 
-    // Tensor-product sum of one attribute, separably as the reference tessellates (PPSSPP
-    // SplineCommon.cpp, Tessellator::SampleU then SampleV): each row of four control points
-    // (fixed v) is folded along u (p0·w0 + p1·w1 + p2·w2 + p3·w3, in that order, single
-    // precision), then the four row sums are weighted along v the same way. The rounding
-    // depends on this order; it moves tessellated vertices by a few ulps, which decides integer
-    // Z at vertices and so z-fighting between coplanar patches: Coded Arms draws its floor grate
-    // over its lava with GEQUAL, and the reference shows the lava in two streaks around the one
-    // grate vertex whose screen Z this order rounds to 2931.998 instead of 2932 (together with
-    // depth interpolation rounded to nearest as in raster.cpp; docs/accuracy.md).
-    // The 16 control points of the point's patch, P[b][a] (row b along v, column a along u),
-    // looked up once per output vertex rather than once per attribute.
-    using Patch16 = const DecodedVertex* [4][4];
-    void gather(const Basis1D& bu, const Basis1D& bv, Patch16& P) const {
-        for (int b = 0; b < 4; ++b)
-            for (int a = 0; a < 4; ++a) P[b][a] = &cp(bu, bv, a, b);
+    // Tensor-product sums, separably as the reference tessellates (PPSSPP SplineCommon.cpp,
+    // Tessellator::SampleU then SampleV): each row of four control points (fixed v) is folded
+    // along u (p0·w0 + p1·w1 + p2·w2 + p3·w3, in that order, single precision), then the four
+    // row sums are weighted along v the same way. The rounding depends on this order; it moves
+    // tessellated vertices by a few ulps, which decides integer Z at vertices and so z-fighting
+    // between coplanar patches: Coded Arms draws its floor grate over its lava with GEQUAL, and
+    // the reference shows the lava in two streaks around the one grate vertex whose screen Z this
+    // order rounds to 2931.998 instead of 2932 (together with depth interpolation rounded to
+    // nearest as in raster.cpp; docs/accuracy.md).
+    // The u folds depend only on the column's basis and the control row, so they are made once
+    // per output column and patch row (foldRows) and shared by every output vertex of that
+    // column in the patch row; the sums are the same operations in the same order.
+    //
+    // The attributes summed, per control point, in one flat array: position (3), texture
+    // coordinates (2), normal (3), weights (weightCount), colour (4), as the format has them.
+    int nattr = 0;
+    std::vector<float> cpAttr;
+    void packAttributes() {
+        nattr = 3 + (hasUV ? 2 : 0) + (hasNormal ? 3 : 0) + (hasWeights ? int(weightCount) : 0) + (hasColor ? 4 : 0);
+        cpAttr.resize(cps->size() * size_t(nattr));
+        float* o = cpAttr.data();
+        for (const DecodedVertex& p : *cps) {
+            o = std::copy(p.pos, p.pos + 3, o);
+            if (hasUV) o = std::copy(p.uv, p.uv + 2, o);
+            if (hasNormal) o = std::copy(p.nrm, p.nrm + 3, o);
+            if (hasWeights) o = std::copy(p.weights, p.weights + weightCount, o);
+            if (hasColor)
+                for (int c = 0; c < 4; ++c) *o++ = float(p.color[c]);
+        }
     }
-    template <typename Get>
-    static float sum(const Patch16& P, const Basis1D& bu, const Basis1D& bv, Get get) {
-        auto row = [&](int b) {
-            float acc = get(*P[b][0]) * bu.w[0];
-            for (int a = 1; a < 4; ++a) acc = acc + get(*P[b][a]) * bu.w[a];
-            return acc;
-        };
-        float acc = row(0) * bv.w[0];
-        for (int b = 1; b < 4; ++b) acc = acc + row(b) * bv.w[b];
-        return acc;
+    // The u folds of control rows row0 … row0 + 3 with the column basis bu: rows[b·nattr + k].
+    void foldRows(const Basis1D& bu, u32 row0, float* rows) const {
+        const size_t stride = size_t(nattr);
+        for (u32 b = 0; b < 4; ++b) {
+            const float* p = &cpAttr[(size_t(row0 + b) * ucount + bu.first) * stride];
+            float* r = rows + b * stride;
+            for (size_t k = 0; k < stride; ++k) {
+                float acc = p[k] * bu.w[0];
+                for (size_t a = 1; a < 4; ++a) acc = acc + p[a * stride + k] * bu.w[a];
+                r[k] = acc;
+            }
+        }
     }
 
     // Evaluates one output vertex at local parameters (tu, tv) of patch (pu, pv), with the basis
     // values the caller computed once per column (bu) and per row (bv): basisU/basisV at the
     // local parameter (Bezier) or at the global one (splines, as the reference computes them).
-    DecodedVertex eval(u32 pu, float tu, const Basis1D& bu, u32 pv, float tv, const Basis1D& bv) const {
-        Patch16 P;
-        gather(bu, bv, P);
+    // `rows`: foldRows of the vertex's column for the control rows bv.first … bv.first + 3.
+    DecodedVertex eval(u32 pu, float tu, const Basis1D& bu, u32 pv, float tv, const Basis1D& bv,
+                       const float* rows) const {
+        float sum[3 + 2 + 3 + 8 + 4];
+        const size_t stride = size_t(nattr);
+        for (size_t k = 0; k < stride; ++k) {
+            float acc = rows[k] * bv.w[0];
+            for (size_t b = 1; b < 4; ++b) acc = acc + rows[b * stride + k] * bv.w[b];
+            sum[k] = acc;
+        }
         DecodedVertex out;
-        float col[4] = {};
-        for (int c = 0; c < 3; ++c) out.pos[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.pos[c]; });
-        if (hasUV)
-            for (int c = 0; c < 2; ++c) out.uv[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.uv[c]; });
-        if (hasNormal)
-            for (int c = 0; c < 3; ++c) out.nrm[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.nrm[c]; });
-        if (hasWeights)
-            for (u32 c = 0; c < weightCount; ++c)
-                out.weights[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return p.weights[c]; });
-        if (hasColor)
-            for (int c = 0; c < 4; ++c) col[c] = sum(P, bu, bv, [c](const DecodedVertex& p) { return float(p.color[c]); });
+        const float* in = sum;
+        std::copy(in, in + 3, out.pos), in += 3;
+        if (hasUV) std::copy(in, in + 2, out.uv), in += 2;
+        if (hasNormal) std::copy(in, in + 3, out.nrm), in += 3;
+        if (hasWeights) std::copy(in, in + weightCount, out.weights), in += weightCount;
+        const float* col = in;
         if (hasColor) {
             for (int c = 0; c < 4; ++c) {
                 const float v = std::floor(col[c] + 0.5f);
@@ -307,7 +325,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     s.hasColor = reader.hasColor();
     s.hasNormal = reader.hasNormal();
     s.hasWeights = reader.hasWeights();
-    s.weightCount = reader.weightCount();
+    s.weightCount = std::min(reader.weightCount(), 8u);  // DecodedVertex::weights
     s.reverseFace = p.reverseFace;
     // Normals are generated when the vertex has none and something reads them: lighting (ge-rules.md §3.2),
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
@@ -316,6 +334,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
         s.spansU = splineSpans(int(ucount), int(p.uknot & 3));
         s.spansV = splineSpans(int(vcount), int(p.vknot & 3));
     }
+    s.packAttributes();
 
     out.verts.reserve(size_t(total));
     const float invU = 1.0f / float(divU), invV = 1.0f / float(divV);
@@ -332,14 +351,20 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
             const u32 pu = std::min(i / divU, patchesU - 1);
             bus[i] = s.basisU(pu, float(i - pu * divU) * invU, float(i) * invU);
         }
+        std::vector<float> folds((nu + 1) * 4 * size_t(s.nattr));
+        u32 foldedRow0 = ~0u;
         for (u32 j = 0; j <= nv; ++j) {
             const u32 pv = std::min(j / divV, patchesV - 1);
             const float tv = float(j - pv * divV) * invV, gv = float(j) * invV;
             const Basis1D bv = s.basisV(pv, tv, gv);
+            if (bv.first != foldedRow0) {
+                foldedRow0 = bv.first;
+                for (u32 i = 0; i <= nu; ++i) s.foldRows(bus[i], bv.first, &folds[i * 4 * size_t(s.nattr)]);
+            }
             for (u32 i = 0; i <= nu; ++i) {
                 const u32 pu = std::min(i / divU, patchesU - 1);
                 const float tu = float(i - pu * divU) * invU;
-                out.verts.push_back(s.eval(pu, tu, bus[i], pv, tv, bv));
+                out.verts.push_back(s.eval(pu, tu, bus[i], pv, tv, bv, &folds[i * 4 * size_t(s.nattr)]));
             }
         }
         if (out.prim == GE_PRIM_POINTS) {
@@ -351,17 +376,21 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     }
 
     std::vector<Basis1D> bus(divU + 1);
+    std::vector<float> folds((divU + 1) * 4 * size_t(s.nattr));
     for (u32 pv = 0; pv < patchesV; ++pv)
         for (u32 pu = 0; pu < patchesU; ++pu) {
             const u32 base = u32(out.verts.size());
             for (u32 i = 0; i <= divU; ++i) {
                 const float tu = local(i, divU, invU);
                 bus[i] = s.basisU(pu, tu, tu);
+                s.foldRows(bus[i], 3 * pv, &folds[i * 4 * size_t(s.nattr)]);  // bezierBasis: rows 3·pv …
             }
             for (u32 j = 0; j <= divV; ++j) {
                 const float tv = local(j, divV, invV);
                 const Basis1D bv = s.basisV(pv, tv, tv);
-                for (u32 i = 0; i <= divU; ++i) out.verts.push_back(s.eval(pu, local(i, divU, invU), bus[i], pv, tv, bv));
+                for (u32 i = 0; i <= divU; ++i)
+                    out.verts.push_back(
+                        s.eval(pu, local(i, divU, invU), bus[i], pv, tv, bv, &folds[i * 4 * size_t(s.nattr)]));
             }
             if (out.prim != GE_PRIM_POINTS) appendGridIndices(base, divU, divV, p.patchPrim, out.indices);
         }
