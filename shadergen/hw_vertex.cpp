@@ -204,6 +204,32 @@ VertexLayout layoutOf(const HwVsKey& k) {
     return VertexLayout::fromVtype(vtype);
 }
 
+// Skinning (hle/vertex_decoder.cpp applySkinning): Σ w_b·(Bone_b·(pos, 1)) and
+// Σ w_b·(Bone_b 3×3·nrm), plain float products (no GE term rule), zero weights skipped.
+void emitSkinning(std::string& s, const HwVsKey& k, const Need& need) {
+    const int wc = k.weightCount;
+    s += "  {\n"
+         "    PRECISE vec3 sp = vec3(0.0);\n"
+         "    PRECISE vec3 sn = vec3(0.0);\n";
+    for (int bn = 0; bn < wc; ++bn) {
+        const int m = HW_WORD(bones) + 12 * bn;
+        s += "    if (wt[" + std::to_string(bn) + "] != 0.0) {\n";
+        // Row r: ((m_r·x + m_{3+r}·y) + m_{6+r}·z) + m_{9+r}, as three columns at once.
+        auto c = [&](int k) { return vec3At(m + 3 * k); };
+        s += "      PRECISE vec3 p = ((" + c(0) + " * pos.x + " + c(1) + " * pos.y) + " + c(2) + " * pos.z) + " + c(3) +
+             ";\n";
+        s += "      sp = sp + wt[" + std::to_string(bn) + "] * p;\n";
+        if (need.normal && k.nrm) {
+            s += "      PRECISE vec3 q = (" + c(0) + " * nrm.x + " + c(1) + " * nrm.y) + " + c(2) + " * nrm.z;\n";
+            s += "      sn = sn + wt[" + std::to_string(bn) + "] * q;\n";
+        }
+        s += "    }\n";
+    }
+    s += "    pos = sp;\n";
+    if (need.normal && k.nrm) s += "    nrm = sn;\n";
+    s += "  }\n";
+}
+
 void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
     const VertexLayout l = layoutOf(k);
     const int mc = k.morphCount;
@@ -259,30 +285,66 @@ void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
         const std::string mc0 = word(HW_WORD(matColor));
         s += "  ivec4 vcol = ivec4(uvec4(" + mc0 + ", " + mc0 + " >> 8, " + mc0 + " >> 16, " + mc0 + " >> 24) & 255u);\n";
     }
-    if (wc) {
-        // Skinning (hle/vertex_decoder.cpp applySkinning): Σ w_b·(Bone_b·(pos, 1)) and
-        // Σ w_b·(Bone_b 3×3·nrm), plain float products (no GE term rule), zero weights skipped.
-        s += "  {\n"
-             "    PRECISE vec3 sp = vec3(0.0);\n"
-             "    PRECISE vec3 sn = vec3(0.0);\n";
-        for (int bn = 0; bn < wc; ++bn) {
-            const int m = HW_WORD(bones) + 12 * bn;
-            s += "    if (wt[" + std::to_string(bn) + "] != 0.0) {\n";
-            // Row r: ((m_r·x + m_{3+r}·y) + m_{6+r}·z) + m_{9+r}, as three columns at once.
-            auto c = [&](int k) { return vec3At(m + 3 * k); };
-            s += "      PRECISE vec3 p = ((" + c(0) + " * pos.x + " + c(1) + " * pos.y) + " + c(2) + " * pos.z) + " + c(3) +
-                 ";\n";
-            s += "      sp = sp + wt[" + std::to_string(bn) + "] * p;\n";
-            if (need.normal && k.nrm) {
-                s += "      PRECISE vec3 q = (" + c(0) + " * nrm.x + " + c(1) + " * nrm.y) + " + c(2) + " * nrm.z;\n";
-                s += "      sn = sn + wt[" + std::to_string(bn) + "] * q;\n";
-            }
-            s += "    }\n";
-        }
-        s += "    pos = sp;\n";
-        if (need.normal && k.nrm) s += "    nrm = sn;\n";
-        s += "  }\n";
+    if (wc) emitSkinning(s, k, need);
+}
+
+// Light n of lightVertex (geometry/lighting.cpp), HwVsKey's type (1 directional, 2 point, 3 spot)
+// and components (0 ambient + diffuse, 1 + specular, 2 powered diffuse): its terms added to lc
+// and spec.
+void emitLight(std::string& s, int n, int type, int comp) {
+    const std::string mk = uf(HW_WORD(specularExp));
+    const int p = HW_WORD(lightPos) + 4 * n, a = HW_WORD(lightAtt) + 4 * n, sd = HW_WORD(lightSpotDir) + 4 * n;
+    const int sp = HW_WORD(lightSpot) + 4 * n;
+    s += "  {  // light " + std::to_string(n) + "\n";
+    s += "    PRECISE vec3 L = " + vec3At(p) + ";\n"
+         "    PRECISE float attspot = 1.0;\n";
+    if (type >= 2) {
+        // L = light − vertex, d = |L|; attenuation 1/(a + b·d + c·d²) limited to [0, 1] (9-3).
+        s += "    L = L - world;\n"
+             "    float d = normalizeOr001(L);\n"
+             "    PRECISE float den = (" + uf(a) + " + " + uf(a + 1) + " * d) + (" + uf(a + 2) + " * d) * d;\n"
+             "    float att = fdiv(1.0, den);\n"
+             "    if (isNan(att) || att <= 0.0) att = 0.0;\n"
+             "    else if (att > 1.0) att = 1.0;\n"
+             "    attspot = att;\n";
     }
+    if (type == 3) {
+        // Spot: cos = LD·L, L = light − vertex (geometry/lighting.cpp: hardware-measured sign,
+        // not the manual's 9-4); counts when cos ≥ LKO (ge-rules.md §8.9).
+        // A forced cosine (≥ 0) stands for a direction that cannot be normalised.
+        s += "    PRECISE float raw = " + uf(sp + 2) + " >= 0.0 ? " + uf(sp + 2) + " : (" + uf(sd) + " * L.x + " +
+             uf(sd + 1) + " * L.y) + " + uf(sd + 2) + " * L.z;\n"
+             "    if (isNan(raw)) raw = signBit(raw) ? 0.0 : 1.0;\n"
+             "    float spot = 0.0;\n"
+             "    if (raw >= " + uf(sp + 1) + ") {\n"
+             "      spot = lightPow(raw, " + uf(sp) + ");\n"
+             "      if (isNan(spot)) spot = 0.0;\n"
+             "    }\n"
+             "    attspot = attspot * spot;\n";
+    }
+    s += "    if (!isNan(attspot)) {\n";
+    s += "      lc.rgb += (" + ivec3At(HW_WORD(lightAmbient) + 4 * n) + " * mac.rgb * lightScale(attspot)) >> 19;\n";
+    s += "      PRECISE float ndotl = (L.x * wn.x + L.y * wn.y) + L.z * wn.z;\n";
+    if (comp == 2) s += "      float diffuse = lightPow(ndotl, " + mk + ");\n";  // 9-7
+    else s += "      float diffuse = ndotl;\n";
+    s += "      if (diffuse > 0.0) {\n"
+         "        PRECISE float kd = attspot * diffuse;\n"
+         "        lc.rgb += (" + ivec3At(HW_WORD(lightDiffuse) + 4 * n) + " * mdc * lightScale(kd)) >> 19;\n"
+         "      }\n";
+    if (comp == 1) {
+        // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (ge-rules.md §8.12).
+        s += "      if (ndotl >= 0.0) {\n"
+             "        PRECISE vec3 H = vec3(L.x, L.y, L.z + 1.0);\n"
+             "        normalizeOr001(H);\n"
+             "        PRECISE float hn = (H.x * wn.x + H.y * wn.y) + H.z * wn.z;\n"
+             "        float sp = lightPow(hn, " + mk + ");\n"
+             "        if (sp > 0.0) {\n"
+             "          PRECISE float ks = attspot * sp;\n"
+             "          spec += (" + ivec3At(HW_WORD(lightSpecular) + 4 * n) + " * msc * lightScale(ks)) >> 19;\n"
+             "        }\n"
+             "      }\n";
+    }
+    s += "    }\n  }\n";
 }
 
 // geometry/lighting lightVertex, unrolled for the key's lights. Inputs: world (world position),
@@ -299,63 +361,8 @@ void emitLighting(std::string& s, const HwVsKey& k) {
          "  lc.rgb = " + ivec3At(HW_WORD(emissive)) + " + ((" + ivec3At(HW_WORD(globalAmbient)) + " * mac.rgb) >> 10);\n"
          "  lc.a = (" + ui(HW_WORD(globalAmbient) + 3) + " * mac.a) >> 10;\n"
          "  ivec3 spec = ivec3(0);\n";
-    const std::string mk = uf(HW_WORD(specularExp));
-    for (int n = 0; n < 4; ++n) {
-        const int type = k.lightType[n], comp = k.lightComp[n];
-        if (!type) continue;
-        const int p = HW_WORD(lightPos) + 4 * n, a = HW_WORD(lightAtt) + 4 * n, sd = HW_WORD(lightSpotDir) + 4 * n;
-        const int sp = HW_WORD(lightSpot) + 4 * n;
-        s += "  {  // light " + std::to_string(n) + "\n";
-        s += "    PRECISE vec3 L = " + vec3At(p) + ";\n"
-             "    PRECISE float attspot = 1.0;\n";
-        if (type >= 2) {
-            // L = light − vertex, d = |L|; attenuation 1/(a + b·d + c·d²) limited to [0, 1] (9-3).
-            s += "    L = L - world;\n"
-                 "    float d = normalizeOr001(L);\n"
-                 "    PRECISE float den = (" + uf(a) + " + " + uf(a + 1) + " * d) + (" + uf(a + 2) + " * d) * d;\n"
-                 "    float att = fdiv(1.0, den);\n"
-                 "    if (isNan(att) || att <= 0.0) att = 0.0;\n"
-                 "    else if (att > 1.0) att = 1.0;\n"
-                 "    attspot = att;\n";
-        }
-        if (type == 3) {
-            // Spot: cos = LD·L, L = light − vertex (geometry/lighting.cpp: hardware-measured sign,
-            // not the manual's 9-4); counts when cos ≥ LKO (ge-rules.md §8.9).
-            // A forced cosine (≥ 0) stands for a direction that cannot be normalised.
-            s += "    PRECISE float raw = " + uf(sp + 2) + " >= 0.0 ? " + uf(sp + 2) + " : (" + uf(sd) + " * L.x + " +
-                 uf(sd + 1) + " * L.y) + " + uf(sd + 2) + " * L.z;\n"
-                 "    if (isNan(raw)) raw = signBit(raw) ? 0.0 : 1.0;\n"
-                 "    float spot = 0.0;\n"
-                 "    if (raw >= " + uf(sp + 1) + ") {\n"
-                 "      spot = lightPow(raw, " + uf(sp) + ");\n"
-                 "      if (isNan(spot)) spot = 0.0;\n"
-                 "    }\n"
-                 "    attspot = attspot * spot;\n";
-        }
-        s += "    if (!isNan(attspot)) {\n";
-        s += "      lc.rgb += (" + ivec3At(HW_WORD(lightAmbient) + 4 * n) + " * mac.rgb * lightScale(attspot)) >> 19;\n";
-        s += "      PRECISE float ndotl = (L.x * wn.x + L.y * wn.y) + L.z * wn.z;\n";
-        if (comp == 2) s += "      float diffuse = lightPow(ndotl, " + mk + ");\n";  // 9-7
-        else s += "      float diffuse = ndotl;\n";
-        s += "      if (diffuse > 0.0) {\n"
-             "        PRECISE float kd = attspot * diffuse;\n"
-             "        lc.rgb += (" + ivec3At(HW_WORD(lightDiffuse) + 4 * n) + " * mdc * lightScale(kd)) >> 19;\n"
-             "      }\n";
-        if (comp == 1) {
-            // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (ge-rules.md §8.12).
-            s += "      if (ndotl >= 0.0) {\n"
-                 "        PRECISE vec3 H = vec3(L.x, L.y, L.z + 1.0);\n"
-                 "        normalizeOr001(H);\n"
-                 "        PRECISE float hn = (H.x * wn.x + H.y * wn.y) + H.z * wn.z;\n"
-                 "        float sp = lightPow(hn, " + mk + ");\n"
-                 "        if (sp > 0.0) {\n"
-                 "          PRECISE float ks = attspot * sp;\n"
-                 "          spec += (" + ivec3At(HW_WORD(lightSpecular) + 4 * n) + " * msc * lightScale(ks)) >> 19;\n"
-                 "        }\n"
-                 "      }\n";
-        }
-        s += "    }\n  }\n";
-    }
+    for (int n = 0; n < 4; ++n)
+        if (k.lightType[n]) emitLight(s, n, k.lightType[n], k.lightComp[n]);
     if (!k.separateSpecular) s += "  lc.rgb += spec;\n  spec = ivec3(0);\n";
     s += "  ivec4 prim = clamp(lc, 0, 255);\n"
          "  ivec3 sec = clamp(spec, 0, 255);\n";

@@ -280,6 +280,31 @@ void emitExactHelpers(std::string& s, const FsKey& k) {
     }
 }
 
+// The end of texel() for a CLUT texture over a buffer of format fb (c: the stored pixel): the
+// pixel's bits give the index (the whole pixel for CLUT16 over a 16-bit buffer and CLUT32 over
+// 8888, a byte or nibble of it for CLUT8/CLUT4, `bits` wide, perPixel of them), masked as
+// ((t >> SFT) & MSK) and looked up in the palette resolved per masked value (ge-rules.md §6.4;
+// hle/texture_decoder maskedPalette, which folds in CSA and the palette size).
+void emitTargetClut(std::string& s, int fb, int bits, int perPixel) {
+    if (fb == GE_FORMAT_8888) {
+        s += "  uint raw = uint(c.r) | (uint(c.g) << 8) | (uint(c.b) << 16) | (uint(c.a) << 24);\n";
+    } else {
+        switch (fb) {
+            case GE_FORMAT_565: s += "  uint raw = uint((c.r >> 3) | ((c.g >> 2) << 5) | ((c.b >> 3) << 11));\n"; break;
+            case GE_FORMAT_5551:
+                s += "  uint raw = uint((c.r >> 3) | ((c.g >> 3) << 5) | ((c.b >> 3) << 10) | ((c.a >> 7) << 15));\n";
+                break;
+            default: s += "  uint raw = uint((c.r >> 4) | ((c.g >> 4) << 4) | ((c.b >> 4) << 8) | ((c.a >> 4) << 12));\n"; break;
+        }
+    }
+    if (bits)
+        s += "  raw = (raw >> uint(((u / u_texScale) % " + std::to_string(perPixel) + ") * " + std::to_string(bits) +
+             ")) & " + std::to_string((1 << bits) - 1) + "u;\n";
+    s += "  int m = int((raw >> uint(u_clut.x)) & uint(u_clut.y));\n"
+         "  return ivec4(texelFetch(u_clutTex, ivec2(m, 0), 0));\n"
+         "}\n";
+}
+
 // Texel fetch from a render target sampled in place (FsKey::texTarget, hardware mode). u, v count
 // the target's texels (u_texScale per PSP texel); wrap and clamp work on the scaled sizes (ref
 // ge-rules.md §8.10: clamp to min(w, 512) − 1, repeat modulo the power-of-two size). The origin (x, y) of the
@@ -304,27 +329,7 @@ void emitTargetTexel(std::string& s, const FsKey& k) {
     else
         s += "  ivec4 c = ivec4(texelFetch(u_tex, ivec2(L.w + u, L.x + v), 0));\n";
     if (clut) {
-        // The pixel's bits give the index (the whole pixel for CLUT16 over a 16-bit buffer and
-        // CLUT32 over 8888, a byte or nibble of it for CLUT8/CLUT4), masked as ((t >> SFT) & MSK)
-        // and looked up in the palette resolved per masked value (ge-rules.md §6.4; hle/texture_decoder
-        // maskedPalette, which folds in CSA and the palette size).
-        if (fb == GE_FORMAT_8888) {
-            s += "  uint raw = uint(c.r) | (uint(c.g) << 8) | (uint(c.b) << 16) | (uint(c.a) << 24);\n";
-        } else {
-            switch (fb) {
-                case GE_FORMAT_565: s += "  uint raw = uint((c.r >> 3) | ((c.g >> 2) << 5) | ((c.b >> 3) << 11));\n"; break;
-                case GE_FORMAT_5551:
-                    s += "  uint raw = uint((c.r >> 3) | ((c.g >> 3) << 5) | ((c.b >> 3) << 10) | ((c.a >> 7) << 15));\n";
-                    break;
-                default: s += "  uint raw = uint((c.r >> 4) | ((c.g >> 4) << 4) | ((c.b >> 4) << 8) | ((c.a >> 4) << 12));\n"; break;
-            }
-        }
-        if (bits)
-            s += "  raw = (raw >> uint(((u / u_texScale) % " + std::to_string(perPixel) + ") * " + std::to_string(bits) +
-                 ")) & " + std::to_string((1 << bits) - 1) + "u;\n";
-        s += "  int m = int((raw >> uint(u_clut.x)) & uint(u_clut.y));\n"
-             "  return ivec4(texelFetch(u_clutTex, ivec2(m, 0), 0));\n"
-             "}\n";
+        emitTargetClut(s, fb, bits, perPixel);
         return;
     }
     if (fb == GE_FORMAT_8888 || fb == k.texFormat) {
