@@ -27,6 +27,7 @@
 #include <string>
 
 #include "geometry/raster.h"
+#include "shadergen/glsl_common.h"
 #include "shadergen/hw_uniform_text.h"
 #include "shadergen/hw_vertex.h"
 
@@ -35,9 +36,8 @@ namespace {
 
 using namespace hwtext;
 
-// Fixed text: helpers and the port of geometry/clip.cpp and VertexPipeline::triangle. The key
-// enters through GE_CLE, GE_PRIM, GE_FLAT, GE_TEXTURE, GE_THROUGH; the uniforms through GE_SX … GE_CULL_CCW.
-const char* kBody = R"(struct CV {
+// One vertex as the CPU holds it (geometry/transform.h ClipVertex with its ScreenVertex).
+const char* const kVertexStruct = R"(struct CV {
   vec4 clip;     // ClipVertex::clip
   vec4 stqf;     // ScreenVertex s, t, q, fog
   ivec4 col;     // ScreenVertex::color
@@ -45,27 +45,12 @@ const char* kBody = R"(struct CV {
   ivec3 scr;     // ScreenVertex x, y (1/16 pixel), z
   bool outside;  // ClipVertex::outside
 };
-bool isNan(float x) { return (floatBitsToUint(x) & 0x7FFFFFFFu) > 0x7F800000u; }
-bool notFinite(float x) { return (floatBitsToUint(x) & 0x7F800000u) == 0x7F800000u; }
-float fdiv(float a, float b) {
-#ifdef GE_FP64
-  PRECISE double q = double(a) / double(b);
-  return float(q);
-#else
-  PRECISE float q = a / b;
-  return q;
-#endif
-}
-// geometry/transform.cpp projectToScreen to16 and depthToInt.
-int to16(float f, int off) {
-  PRECISE float t = f * 16.0 + 0.375;
-  t = t - float(off);
-  if (isNan(t) || t <= -1048576.0) t = -1048576.0;
-  if (t > 1048576.0) t = 1048576.0;
-  return int(t);
-}
-int depthToInt(float z) { return z >= 0.0 ? (z <= 65535.0 ? int(z) : 65535) : 0; }
+)";
 
+// Fixed text after glsl_common.h's isNan, notFinite, fdiv, to16 and depthToInt: helpers and the
+// port of geometry/clip.cpp and VertexPipeline::triangle. The key enters through GE_CLE, GE_PRIM,
+// GE_FLAT, GE_TEXTURE, GE_THROUGH; the uniforms through GE_SX … GE_CULL_CCW.
+const char* const kBody = R"(
 // Exact signed 64-bit products and sums of ints below 2^22 in magnitude (x16 is limited to
 // ±2^20, differences of two to ±2^21): value = v.x·2^22 + v.y with 0 ≤ v.y < 2^22.
 ivec2 norm64(int hi, int lo) { return ivec2(hi + (lo >> 22), lo & 0x3FFFFF); }
@@ -318,19 +303,11 @@ void main() {
 
 bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
     (void)caps;  // host features are chosen by the GLSL preprocessor (hw_vertex.h)
+    (void)err;
     HwVsKey k = key;
     canonicalize(k);
-    if (!k.geometryShader) {
-        if (err) *err = "generateHwGeometryShader: key.geometryShader is 0 (" + describe(k) + ")";
-        return false;
-    }
     std::string s;
-    s += "#version 330 core\n"
-         "#extension GL_ARB_gpu_shader5 : enable\n"
-         "#extension GL_ARB_gpu_shader_fp64 : enable\n";
-    s += "// ge2gl geometry " + describe(k) + "\n";
-    s += "#ifdef GL_ARB_gpu_shader5\n#define PRECISE precise\n#else\n#define PRECISE\n#endif\n"
-         "#if defined(GL_ARB_gpu_shader_fp64) && !defined(GE_NO_FP64)\n#define GE_FP64 1\n#endif\n";
+    glsl::hwPreamble(s, "geometry " + describe(k));
     s += "#define GE_CLE " + std::to_string(k.clipEnable ? 1 : 0) + "\n";
     s += "#define GE_PRIM " + std::to_string(k.primKind) + "\n";
     s += "#define GE_FLAT " + std::to_string(k.flatShade ? 1 : 0) + "\n";
@@ -359,6 +336,10 @@ bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::str
     s += "noperspective out vec4 v_tex;\n"
          "noperspective out float v_fog;\n"
          "noperspective out float v_z;\n";
+    s += kVertexStruct;
+    s += glsl::kFloatClass;
+    s += glsl::kFdiv;
+    s += glsl::kScreenRound;
     // No position in the format (k.pos == 0): the vertex shader flags every vertex (8), so
     // discardPrimitive drops every primitive (ge-rules.md §8.11).
     s += kBody;

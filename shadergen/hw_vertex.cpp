@@ -9,34 +9,12 @@
 // sqrt as geometry/lighting normalizeOr001 does; pow (lighting exponents) is evaluated in double
 // and rounded once, which matches glibc's powf except where powf itself is not correctly rounded.
 //
-// Near-plane clipping. With the geometry shader (key.geometryShader = 1, hw_geometry.cpp) the
-// vertex shader only hands on the CPU's ClipVertex and the geometry shader clips, culls and drops
-// exactly as translator/vertex_pipeline.cpp does. The vertex shader alone (key.geometryShader = 0,
-// which the translator never asks for; the tests compile it) leaves the cut to GL's clipper. The
-// CPU clipper (geometry/clip.cpp clipTriangleNear/lerpVertex) cuts a triangle at z = −w in clip
-// space and gives the new vertex the clip-space interpolation of every attribute (colours with an
-// 8-bit weight), then snaps it to the 1/16 grid. Alone, GL's clipper does it (gl_ClipDistance[0]
-// = z + w, the same plane, the same crossing point). What differs there:
-//   - the new vertex is not snapped to the GE's 1/16 grid, and the inside vertices' positions are
-//     their snapped ones (so the crossing point moves by up to 1/16 pixel times the screen-space
-//     extrapolation factor of the cut); a vertex beyond the plane is given its exact (unsnapped)
-//     homogeneous position so that only the inside vertices' snapping contributes;
-//   - noperspective outputs are interpolated by GL in screen space along the cut edge, the CPU
-//     interpolates colours and fog with the clip-space parameter: colours, fog and v_tex.w at the
-//     new vertices differ (when the outside vertex has w < 0 GL extrapolates them). v_tex.xyz
-//     (s/w, t/w, q/w) are affine in screen space, so their cut values agree up to rounding;
-//   - the CPU drops the pieces of the clipped polygon whose new vertex lands outside the 4096²
-//     screen and fans the polygon from a start that depends on the strip/fan order; GL keeps the
-//     whole clipped polygon;
-//   - a vertex with w < 0 that is not beyond the near plane (only with unusual projection
-//     matrices) is removed by GL's view-volume clipping, where the CPU projects it through.
-// Triangles that do not cross the near plane are drawn exactly as the CPU path draws them.
-#include <cstddef>
-#include <cstdio>
-#include <cstring>
+// The vertex shader hands on the CPU's ClipVertex (hw_vertex.h); the discard rules, near-plane
+// clipping and culling, which need the whole primitive, are the geometry shader's (hw_geometry.cpp),
+// exactly as translator/vertex_pipeline.cpp does them.
 #include <string>
 
-#include "geometry/raster.h"
+#include "shadergen/glsl_common.h"
 #include "shadergen/hw_uniform_text.h"
 #include "shadergen/hw_vertex.h"
 
@@ -47,8 +25,9 @@ using namespace hwtext;
 
 const char* const kXyz[3] = {"x", "y", "z"};
 
-// ---- helper functions (fixed text) ----
-const char* kHelpers = R"(uint rb(int a) { return texelFetch(u_vtx, a).r; }
+// ---- helper functions (fixed text; the float class, fdiv and projectToScreen helpers are
+// glsl_common.h's, shared with the geometry shader) ----
+const char* const kFetchHelpers = R"(uint rb(int a) { return texelFetch(u_vtx, a).r; }
 uint r16(int a) { return rb(a) | (rb(a + 1) << 8); }
 uint r32(int a) { return r16(a) | (r16(a + 2) << 16); }
 float rf32(int a) { return uintBitsToFloat(r32(a)); }
@@ -64,21 +43,11 @@ ivec4 col5551(uint v) {
   return ivec4(ivec3((c << 3) | (c >> 2)), (v & 0x8000u) != 0u ? 255 : 0);
 }
 ivec4 col4444(uint v) { return ivec4(uvec4(v, v >> 4, v >> 8, v >> 12) & 15u) * 17; }
-bool isNan(float x) { return (floatBitsToUint(x) & 0x7FFFFFFFu) > 0x7F800000u; }
-bool notFinite(float x) { return (floatBitsToUint(x) & 0x7F800000u) == 0x7F800000u; }
-bool signBit(float x) { return (floatBitsToUint(x) & 0x80000000u) != 0u; }
+)";
+const char* const kSignHelpers = R"(bool signBit(float x) { return (floatBitsToUint(x) & 0x80000000u) != 0u; }
 float posInf() { return uintBitsToFloat(0x7F800000u); }
-// a / b correctly rounded (geometry/ float divisions).
-float fdiv(float a, float b) {
-#ifdef GE_FP64
-  PRECISE double q = double(a) / double(b);
-  return float(q);
-#else
-  PRECISE float q = a / b;
-  return q;
-#endif
-}
-// One matrix term as the GE forms it (geometry/transform.cpp geTerm): a zero or denormal factor
+)";
+const char* const kGeMathHelpers = R"(// One matrix term as the GE forms it (geometry/transform.cpp geTerm): a zero or denormal factor
 // gives 0 whatever the other is; exponent 255 is an ordinary exponent (±1.m·2^128), evaluated as
 // (1.m·2^64)·b·2^64 — the exact product rounded once, as the CPU's double product.
 float geTermSpecial(float a, float b) {
@@ -180,15 +149,6 @@ int lightScale(float k) {
   if (s < -512.0) return -512;
   return int(s);
 }
-// geometry/transform projectToScreen: x16 = trunc(Xs·16 + 0.375 − OFF), limited to ±2^20.
-int to16(float f, int off) {
-  PRECISE float t = f * 16.0 + 0.375;
-  t = t - float(off);
-  if (isNan(t) || t <= -1048576.0) t = -1048576.0;
-  if (t > 1048576.0) t = 1048576.0;
-  return int(t);
-}
-int depthToInt(float z) { return z >= 0.0 ? (z <= 65535.0 ? int(z) : 65535) : 0; }
 )";
 
 // Column c of a 3×4 matrix at word m (GE element order k = row k%3, column k/3), padded to a
@@ -237,10 +197,41 @@ struct Need {
     bool uv, normal, color, world, worldPos, fogZ;
 };
 
-void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
+// The layout of one stored copy (ge-rules.md §5.2).
+VertexLayout layoutOf(const HwVsKey& k) {
     const u32 vtype = u32(k.tc) | u32(k.col) << 2 | u32(k.nrm) << 5 | u32(k.pos) << 7 | u32(k.weights) << 9 |
                       u32(k.weights ? k.weightCount - 1 : 0) << 14;
-    const VertexLayout l = VertexLayout::fromVtype(vtype);
+    return VertexLayout::fromVtype(vtype);
+}
+
+// Skinning (hle/vertex_decoder.cpp applySkinning): Σ w_b·(Bone_b·(pos, 1)) and
+// Σ w_b·(Bone_b 3×3·nrm), plain float products (no GE term rule), zero weights skipped.
+void emitSkinning(std::string& s, const HwVsKey& k, const Need& need) {
+    const int wc = k.weightCount;
+    s += "  {\n"
+         "    PRECISE vec3 sp = vec3(0.0);\n"
+         "    PRECISE vec3 sn = vec3(0.0);\n";
+    for (int bn = 0; bn < wc; ++bn) {
+        const int m = HW_WORD(bones) + 12 * bn;
+        s += "    if (wt[" + std::to_string(bn) + "] != 0.0) {\n";
+        // Row r: ((m_r·x + m_{3+r}·y) + m_{6+r}·z) + m_{9+r}, as three columns at once.
+        auto c = [&](int k) { return vec3At(m + 3 * k); };
+        s += "      PRECISE vec3 p = ((" + c(0) + " * pos.x + " + c(1) + " * pos.y) + " + c(2) + " * pos.z) + " + c(3) +
+             ";\n";
+        s += "      sp = sp + wt[" + std::to_string(bn) + "] * p;\n";
+        if (need.normal && k.nrm) {
+            s += "      PRECISE vec3 q = (" + c(0) + " * nrm.x + " + c(1) + " * nrm.y) + " + c(2) + " * nrm.z;\n";
+            s += "      sn = sn + wt[" + std::to_string(bn) + "] * q;\n";
+        }
+        s += "    }\n";
+    }
+    s += "    pos = sp;\n";
+    if (need.normal && k.nrm) s += "    nrm = sn;\n";
+    s += "  }\n";
+}
+
+void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
+    const VertexLayout l = layoutOf(k);
     const int mc = k.morphCount;
     const int wc = k.weights ? k.weightCount : 0;
     s += "  int base = gl_VertexID * " + std::to_string(hwVsStride(k)) + ";\n";
@@ -294,30 +285,66 @@ void emitDecode(std::string& s, const HwVsKey& k, const Need& need) {
         const std::string mc0 = word(HW_WORD(matColor));
         s += "  ivec4 vcol = ivec4(uvec4(" + mc0 + ", " + mc0 + " >> 8, " + mc0 + " >> 16, " + mc0 + " >> 24) & 255u);\n";
     }
-    if (wc) {
-        // Skinning (hle/vertex_decoder.cpp applySkinning): Σ w_b·(Bone_b·(pos, 1)) and
-        // Σ w_b·(Bone_b 3×3·nrm), plain float products (no GE term rule), zero weights skipped.
-        s += "  {\n"
-             "    PRECISE vec3 sp = vec3(0.0);\n"
-             "    PRECISE vec3 sn = vec3(0.0);\n";
-        for (int bn = 0; bn < wc; ++bn) {
-            const int m = HW_WORD(bones) + 12 * bn;
-            s += "    if (wt[" + std::to_string(bn) + "] != 0.0) {\n";
-            // Row r: ((m_r·x + m_{3+r}·y) + m_{6+r}·z) + m_{9+r}, as three columns at once.
-            auto c = [&](int k) { return vec3At(m + 3 * k); };
-            s += "      PRECISE vec3 p = ((" + c(0) + " * pos.x + " + c(1) + " * pos.y) + " + c(2) + " * pos.z) + " + c(3) +
-                 ";\n";
-            s += "      sp = sp + wt[" + std::to_string(bn) + "] * p;\n";
-            if (need.normal && k.nrm) {
-                s += "      PRECISE vec3 q = (" + c(0) + " * nrm.x + " + c(1) + " * nrm.y) + " + c(2) + " * nrm.z;\n";
-                s += "      sn = sn + wt[" + std::to_string(bn) + "] * q;\n";
-            }
-            s += "    }\n";
-        }
-        s += "    pos = sp;\n";
-        if (need.normal && k.nrm) s += "    nrm = sn;\n";
-        s += "  }\n";
+    if (wc) emitSkinning(s, k, need);
+}
+
+// Light n of lightVertex (geometry/lighting.cpp), HwVsKey's type (1 directional, 2 point, 3 spot)
+// and components (0 ambient + diffuse, 1 + specular, 2 powered diffuse): its terms added to lc
+// and spec.
+void emitLight(std::string& s, int n, int type, int comp) {
+    const std::string mk = uf(HW_WORD(specularExp));
+    const int p = HW_WORD(lightPos) + 4 * n, a = HW_WORD(lightAtt) + 4 * n, sd = HW_WORD(lightSpotDir) + 4 * n;
+    const int sp = HW_WORD(lightSpot) + 4 * n;
+    s += "  {  // light " + std::to_string(n) + "\n";
+    s += "    PRECISE vec3 L = " + vec3At(p) + ";\n"
+         "    PRECISE float attspot = 1.0;\n";
+    if (type >= 2) {
+        // L = light − vertex, d = |L|; attenuation 1/(a + b·d + c·d²) limited to [0, 1] (9-3).
+        s += "    L = L - world;\n"
+             "    float d = normalizeOr001(L);\n"
+             "    PRECISE float den = (" + uf(a) + " + " + uf(a + 1) + " * d) + (" + uf(a + 2) + " * d) * d;\n"
+             "    float att = fdiv(1.0, den);\n"
+             "    if (isNan(att) || att <= 0.0) att = 0.0;\n"
+             "    else if (att > 1.0) att = 1.0;\n"
+             "    attspot = att;\n";
     }
+    if (type == 3) {
+        // Spot: cos = LD·L, L = light − vertex (geometry/lighting.cpp: hardware-measured sign,
+        // not the manual's 9-4); counts when cos ≥ LKO (ge-rules.md §8.9).
+        // A forced cosine (≥ 0) stands for a direction that cannot be normalised.
+        s += "    PRECISE float raw = " + uf(sp + 2) + " >= 0.0 ? " + uf(sp + 2) + " : (" + uf(sd) + " * L.x + " +
+             uf(sd + 1) + " * L.y) + " + uf(sd + 2) + " * L.z;\n"
+             "    if (isNan(raw)) raw = signBit(raw) ? 0.0 : 1.0;\n"
+             "    float spot = 0.0;\n"
+             "    if (raw >= " + uf(sp + 1) + ") {\n"
+             "      spot = lightPow(raw, " + uf(sp) + ");\n"
+             "      if (isNan(spot)) spot = 0.0;\n"
+             "    }\n"
+             "    attspot = attspot * spot;\n";
+    }
+    s += "    if (!isNan(attspot)) {\n";
+    s += "      lc.rgb += (" + ivec3At(HW_WORD(lightAmbient) + 4 * n) + " * mac.rgb * lightScale(attspot)) >> 19;\n";
+    s += "      PRECISE float ndotl = (L.x * wn.x + L.y * wn.y) + L.z * wn.z;\n";
+    if (comp == 2) s += "      float diffuse = lightPow(ndotl, " + mk + ");\n";  // 9-7
+    else s += "      float diffuse = ndotl;\n";
+    s += "      if (diffuse > 0.0) {\n"
+         "        PRECISE float kd = attspot * diffuse;\n"
+         "        lc.rgb += (" + ivec3At(HW_WORD(lightDiffuse) + 4 * n) + " * mdc * lightScale(kd)) >> 19;\n"
+         "      }\n";
+    if (comp == 1) {
+        // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (ge-rules.md §8.12).
+        s += "      if (ndotl >= 0.0) {\n"
+             "        PRECISE vec3 H = vec3(L.x, L.y, L.z + 1.0);\n"
+             "        normalizeOr001(H);\n"
+             "        PRECISE float hn = (H.x * wn.x + H.y * wn.y) + H.z * wn.z;\n"
+             "        float sp = lightPow(hn, " + mk + ");\n"
+             "        if (sp > 0.0) {\n"
+             "          PRECISE float ks = attspot * sp;\n"
+             "          spec += (" + ivec3At(HW_WORD(lightSpecular) + 4 * n) + " * msc * lightScale(ks)) >> 19;\n"
+             "        }\n"
+             "      }\n";
+    }
+    s += "    }\n  }\n";
 }
 
 // geometry/lighting lightVertex, unrolled for the key's lights. Inputs: world (world position),
@@ -334,63 +361,8 @@ void emitLighting(std::string& s, const HwVsKey& k) {
          "  lc.rgb = " + ivec3At(HW_WORD(emissive)) + " + ((" + ivec3At(HW_WORD(globalAmbient)) + " * mac.rgb) >> 10);\n"
          "  lc.a = (" + ui(HW_WORD(globalAmbient) + 3) + " * mac.a) >> 10;\n"
          "  ivec3 spec = ivec3(0);\n";
-    const std::string mk = uf(HW_WORD(specularExp));
-    for (int n = 0; n < 4; ++n) {
-        const int type = k.lightType[n], comp = k.lightComp[n];
-        if (!type) continue;
-        const int p = HW_WORD(lightPos) + 4 * n, a = HW_WORD(lightAtt) + 4 * n, sd = HW_WORD(lightSpotDir) + 4 * n;
-        const int sp = HW_WORD(lightSpot) + 4 * n;
-        s += "  {  // light " + std::to_string(n) + "\n";
-        s += "    PRECISE vec3 L = " + vec3At(p) + ";\n"
-             "    PRECISE float attspot = 1.0;\n";
-        if (type >= 2) {
-            // L = light − vertex, d = |L|; attenuation 1/(a + b·d + c·d²) limited to [0, 1] (9-3).
-            s += "    L = L - world;\n"
-                 "    float d = normalizeOr001(L);\n"
-                 "    PRECISE float den = (" + uf(a) + " + " + uf(a + 1) + " * d) + (" + uf(a + 2) + " * d) * d;\n"
-                 "    float att = fdiv(1.0, den);\n"
-                 "    if (isNan(att) || att <= 0.0) att = 0.0;\n"
-                 "    else if (att > 1.0) att = 1.0;\n"
-                 "    attspot = att;\n";
-        }
-        if (type == 3) {
-            // Spot: cos = LD·L, L = light − vertex (geometry/lighting.cpp: hardware-measured sign,
-            // not the manual's 9-4); counts when cos ≥ LKO (ge-rules.md §8.9).
-            // A forced cosine (≥ 0) stands for a direction that cannot be normalised.
-            s += "    PRECISE float raw = " + uf(sp + 2) + " >= 0.0 ? " + uf(sp + 2) + " : (" + uf(sd) + " * L.x + " +
-                 uf(sd + 1) + " * L.y) + " + uf(sd + 2) + " * L.z;\n"
-                 "    if (isNan(raw)) raw = signBit(raw) ? 0.0 : 1.0;\n"
-                 "    float spot = 0.0;\n"
-                 "    if (raw >= " + uf(sp + 1) + ") {\n"
-                 "      spot = lightPow(raw, " + uf(sp) + ");\n"
-                 "      if (isNan(spot)) spot = 0.0;\n"
-                 "    }\n"
-                 "    attspot = attspot * spot;\n";
-        }
-        s += "    if (!isNan(attspot)) {\n";
-        s += "      lc.rgb += (" + ivec3At(HW_WORD(lightAmbient) + 4 * n) + " * mac.rgb * lightScale(attspot)) >> 19;\n";
-        s += "      PRECISE float ndotl = (L.x * wn.x + L.y * wn.y) + L.z * wn.z;\n";
-        if (comp == 2) s += "      float diffuse = lightPow(ndotl, " + mk + ");\n";  // 9-7
-        else s += "      float diffuse = ndotl;\n";
-        s += "      if (diffuse > 0.0) {\n"
-             "        PRECISE float kd = attspot * diffuse;\n"
-             "        lc.rgb += (" + ivec3At(HW_WORD(lightDiffuse) + 4 * n) + " * mdc * lightScale(kd)) >> 19;\n"
-             "      }\n";
-        if (comp == 1) {
-            // H = normalize(L + (0, 0, 1)) (9-8); specular only when N·L ≥ 0 (ge-rules.md §8.12).
-            s += "      if (ndotl >= 0.0) {\n"
-                 "        PRECISE vec3 H = vec3(L.x, L.y, L.z + 1.0);\n"
-                 "        normalizeOr001(H);\n"
-                 "        PRECISE float hn = (H.x * wn.x + H.y * wn.y) + H.z * wn.z;\n"
-                 "        float sp = lightPow(hn, " + mk + ");\n"
-                 "        if (sp > 0.0) {\n"
-                 "          PRECISE float ks = attspot * sp;\n"
-                 "          spec += (" + ivec3At(HW_WORD(lightSpecular) + 4 * n) + " * msc * lightScale(ks)) >> 19;\n"
-                 "        }\n"
-                 "      }\n";
-        }
-        s += "    }\n  }\n";
-    }
+    for (int n = 0; n < 4; ++n)
+        if (k.lightType[n]) emitLight(s, n, k.lightType[n], k.lightComp[n]);
     if (!k.separateSpecular) s += "  lc.rgb += spec;\n  spec = ivec3(0);\n";
     s += "  ivec4 prim = clamp(lc, 0, 255);\n"
          "  ivec3 sec = clamp(spec, 0, 255);\n";
@@ -440,12 +412,9 @@ void emitTexture(std::string& s, const HwVsKey& k) {
 }
 
 // Through mode (key.through = 1): hle/vertex_decoder.cpp decodeRaw/VertexReader::read with
-// through = true (the first stored copy only: no morphing; no skinning) and
-// geometry/transform.cpp transformVertex's through branch. Outputs as the transform-mode code.
-void emitThrough(std::string& s, const HwVsKey& k, bool gs) {
-    const u32 vtype = u32(k.tc) | u32(k.col) << 2 | u32(k.nrm) << 5 | u32(k.pos) << 7 | u32(k.weights) << 9 |
-                      u32(k.weights ? k.weightCount - 1 : 0) << 14;
-    const VertexLayout l = VertexLayout::fromVtype(vtype);
+// through = true (the first stored copy only: no morphing; no skinning): position and colour.
+void emitThroughDecode(std::string& s, const HwVsKey& k) {
+    const VertexLayout l = layoutOf(k);
     // The stride still counts every morph copy (VertexReader::stride).
     s += "  int base = gl_VertexID * " + std::to_string(hwVsStride(k)) + ";\n";
     // Position: s8 decodes as 0; s16 signed X, Y and unsigned Z; float with Z limited to
@@ -478,6 +447,12 @@ void emitThrough(std::string& s, const HwVsKey& k, bool gs) {
         break;
     }
     }
+}
+
+// Through mode, then geometry/transform.cpp transformVertex's through branch and the ClipVertex.
+void emitThrough(std::string& s, const HwVsKey& k) {
+    emitThroughDecode(s, k);
+    const VertexLayout l = layoutOf(k);
     // Texture coordinates: u8 /128, u16 texels as they are, float as stored; then s = u/width0,
     // t = v/height0 (ge-rules.md §8.10), q = 1.
     s += "  PRECISE float ts = 0.0, tt = 0.0;\n";
@@ -503,110 +478,18 @@ void emitThrough(std::string& s, const HwVsKey& k, bool gs) {
          "  int x16 = int(x16f);\n"
          "  int y16 = int(y16f);\n"
          "  int zi = depthToInt(pos.z);\n";
-    if (gs) {
-        // ClipVertex: clip = (x, y, z, 1); never outside, on a depth side or beyond the near plane.
-        s += "  g_clip = vec4(pos, 1.0);\n"
-             "  g_color = vcol;\n"
-             "  g_color2 = ivec3(0);\n"
-             "  g_stqf = vec4(ts, tt, 1.0, 1.0);\n"
-             "  g_scr = ivec4(x16, y16, zi, 0);\n"
-             "}\n";
-        return;
-    }
-    const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
-    s += "  v_color = vec4(vcol);\n"
-         "  v_color2 = vec3(0.0);\n"
-         "  v_z = float(zi);\n"
-         "  v_fog = 1.0;\n";
-    s += k.texture ? "  v_tex = vec4(ts, tt, 1.0, 1.0);\n" : "  v_tex = vec4(0.0, 0.0, 1.0, 1.0);\n";
-    s += "  PRECISE float gx = float(x16) * 0.0625;\n"
-         "  PRECISE float gy = float(y16) * 0.0625;\n"
-         "  gx = gx + " + flit(shift) + ";\n"
-         "  gy = gy + " + flit(shift) + ";\n"
-         "  PRECISE float nx = gx * u_ndcScale.x - 1.0;\n"
-         "  PRECISE float ny = gy * u_ndcScale.y - 1.0;\n"
-         "  gl_Position = vec4(nx, ny, 0.0, 1.0);\n"
-         "  gl_ClipDistance[0] = 1.0;\n"
-         "#ifdef GE_CULL\n"
-         "  gl_CullDistance[0] = 1.0;\n"
-         "  gl_CullDistance[1] = 1.0;\n"
-         "  gl_CullDistance[2] = 1.0;\n"
-         "#endif\n"
+    // ClipVertex: clip = (x, y, z, 1); never outside, on a depth side or beyond the near plane.
+    s += "  g_clip = vec4(pos, 1.0);\n"
+         "  g_color = vcol;\n"
+         "  g_color2 = ivec3(0);\n"
+         "  g_stqf = vec4(ts, tt, 1.0, 1.0);\n"
+         "  g_scr = ivec4(x16, y16, zi, 0);\n"
          "}\n";
 }
 
-}  // namespace
-
-bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
-    (void)caps;  // host features are chosen by the GLSL preprocessor (hw_vertex.h)
-    (void)err;
-    HwVsKey k = key;
-    canonicalize(k);
-    std::string s;
-    s += "#version 330 core\n"
-         "#extension GL_ARB_gpu_shader5 : enable\n"
-         "#extension GL_ARB_gpu_shader_fp64 : enable\n"
-         "#extension GL_ARB_cull_distance : enable\n";
-    s += "// ge2gl " + describe(k) + "\n";
-    s += "#ifdef GL_ARB_gpu_shader5\n#define PRECISE precise\n#else\n#define PRECISE\n#endif\n"
-         "#if defined(GL_ARB_gpu_shader_fp64) && !defined(GE_NO_FP64)\n#define GE_FP64 1\n#endif\n"
-         "#if (defined(GL_ARB_cull_distance) || __VERSION__ >= 450) && !defined(GE_NO_CULL)\n#define GE_CULL 1\n#endif\n";
-    const bool gs = k.geometryShader != 0;
-    s += "uniform usamplerBuffer u_vtx;\n"
-         "uniform uvec4 u_hw[" + std::to_string(kHwVsUniformVec4) + "];\n";
-    if (gs) {
-        // The CPU's ClipVertex, for the geometry shader (hw_vertex.h; names shared with
-        // hw_geometry.cpp).
-        s += "out vec4 g_clip;\n"
-             "flat out ivec4 g_color;\n"
-             "flat out ivec3 g_color2;\n"
-             "out vec4 g_stqf;\n"
-             "flat out ivec4 g_scr;\n";
-    } else {
-        const char* interp = k.flatShade ? "flat" : "noperspective";
-        s += "uniform vec2 u_ndcScale;\n";
-        s += std::string(interp) + " out vec4 v_color;\n";
-        s += std::string(interp) + " out vec3 v_color2;\n";
-        s += "noperspective out vec4 v_tex;\n"
-             "noperspective out float v_fog;\n"
-             "noperspective out float v_z;\n";
-    }
-    s += kHelpers;
-    s += "void main() {\n";
-    if (k.pos == 0) {
-        // No position: the vertex is dropped (ge-rules.md §8.11).
-        if (gs) {
-            s += "  g_clip = vec4(0.0, 0.0, 0.0, 1.0);\n  g_color = ivec4(0);\n  g_color2 = ivec3(0);\n"
-                 "  g_stqf = vec4(0.0, 0.0, 1.0, 1.0);\n  g_scr = ivec4(0, 0, 0, 8);\n}\n";
-        } else {
-            s += "  gl_Position = vec4(uintBitsToFloat(0x7FC00000u));\n"
-                 "  gl_ClipDistance[0] = 0.0;\n"
-                 "  v_color = vec4(0.0);\n  v_color2 = vec3(0.0);\n  v_tex = vec4(0.0, 0.0, 1.0, 1.0);\n"
-                 "  v_fog = 1.0;\n  v_z = 0.0;\n}\n";
-        }
-        out = std::move(s);
-        return true;
-    }
-    if (k.through) {
-        emitThrough(s, k, gs);
-        out = std::move(s);
-        return true;
-    }
-
-    bool worldPos = false;  // a positional light needs the world position (makeTransformState)
-    for (int n = 0; n < 4; ++n) worldPos |= k.lighting && k.lightType[n] >= 2;
-    Need need{};
-    need.uv = k.texture && (k.texMap == 0 || (k.texMap == 1 && k.projSource == 1));
-    const bool worldNormal = k.lighting || (k.texture && k.texMap == 2);
-    need.normal = worldNormal || (k.texture && k.texMap == 1 && k.projSource >= 2);
-    need.color = !k.lighting || k.ambientFromVertex || k.diffuseFromVertex || k.specularFromVertex;
-    need.worldPos = worldPos;
-    need.fogZ = k.fog != 0;
-    need.world = worldPos || need.fogZ;
-
-    emitDecode(s, k, need);
-
-    // ---- transform (geometry/transform.cpp transformVertex) ----
+// Transform (geometry/transform.cpp transformVertex): model position and normal, world position,
+// clip coordinates.
+void emitTransform(std::string& s, const HwVsKey& k, const Need& need) {
     s += "  PRECISE vec3 model = pos;\n";
     if (need.normal) {
         if (k.nrm) s += k.normalReverse ? "  PRECISE vec3 normal = -nrm;\n" : "  PRECISE vec3 normal = nrm;\n";
@@ -615,37 +498,25 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
     if (need.world) mul3x4(s, "world", HW_WORD(world), "model", true);
     // Without a positional light the reference folds world·view·proj into one matrix applied to
     // the model position; with one, view·proj applied to the world position.
-    if (worldPos) mul4x4(s, "clip", HW_WORD(viewProj), "world");
+    if (need.worldPos) mul4x4(s, "clip", HW_WORD(viewProj), "world");
     else mul4x4(s, "clip", HW_WORD(worldViewProj), "model");
+}
 
-    // Fog factor from view-space Z (ge-rules.md §3.9): (z_view + end)·slope, or the draw's fixed value.
-    if (k.fog) {
-        const int v = HW_WORD(view);
-        s += "  PRECISE float fogF;\n"
-             "  if (" + ui(HW_WORD(fogFixed)) + " >= 0) fogF = float(" + ui(HW_WORD(fogFixed)) + ");\n"
-             "  else {\n"
-             "    PRECISE float vz = (geTerm(" + uf(v + 2) + ", world.x) + geTerm(" + uf(v + 5) + ", world.y)) + (geTerm(" +
-             uf(v + 8) + ", world.z) + " + uf(v + 11) + ");\n"
-             "    fogF = (vz + " + uf(HW_WORD(fog)) + ") * " + uf(HW_WORD(fog) + 1) + ";\n"
-             "  }\n";
-    }
-    // World normal for lighting and shade mapping, normalised; (0, 0, 1) without a normal.
-    if (worldNormal) {
-        if (k.nrm) {
-            mul3x4(s, "wn", HW_WORD(world), "normal", false);
-            s += "  normalizeOr001(wn);\n";
-        } else {
-            s += "  PRECISE vec3 wn = vec3(0.0, 0.0, 1.0);\n";
-        }
-    }
-    if (k.texture) emitTexture(s, k);
-    if (k.lighting) {
-        emitLighting(s, k);
-    } else {
-        s += "  ivec4 prim = vcol;\n  ivec3 sec = ivec3(0);\n";
-    }
+// Fog factor from view-space Z (ge-rules.md §3.9): (z_view + end)·slope, or the draw's fixed value.
+void emitFogFactor(std::string& s) {
+    const int v = HW_WORD(view);
+    s += "  PRECISE float fogF;\n"
+         "  if (" + ui(HW_WORD(fogFixed)) + " >= 0) fogF = float(" + ui(HW_WORD(fogFixed)) + ");\n"
+         "  else {\n"
+         "    PRECISE float vz = (geTerm(" + uf(v + 2) + ", world.x) + geTerm(" + uf(v + 5) + ", world.y)) + (geTerm(" +
+         uf(v + 8) + ", world.z) + " + uf(v + 11) + ");\n"
+         "    fogF = (vz + " + uf(HW_WORD(fog)) + ") * " + uf(HW_WORD(fog) + 1) + ";\n"
+         "  }\n";
+}
 
-    // ---- screen (projectToScreen): scale, divide by w, add the centre; range flags (ge-rules.md §8.5) ----
+// Screen (projectToScreen): scale, divide by w, add the centre; the range flags (ge-rules.md
+// §8.5), the 1/16-pixel snap and the depth side by |z/w| ≥ 1.00003 (geometry/clip.cpp depthSide).
+void emitProjectToScreen(std::string& s, const HwVsKey& k) {
     const int vp = HW_WORD(viewport);
     s += "  PRECISE float w = clip.w;\n"
          "  PRECISE float xm = clip.x * " + uf(vp) + ";\n"
@@ -668,74 +539,86 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
     const int off = HW_WORD(offset16);
     s += "  int x16 = to16(xs, " + ui(off) + ");\n"
          "  int y16 = to16(ys, " + ui(off + 1) + ");\n";
-    // Depth side by |z/w| ≥ 1.00003 (geometry/clip.cpp depthSide).
     s += "  float zr = fdiv(clip.z, clip.w);\n"
          "  int side = zr >= " + flit(1.00003f) + " ? 1 : (zr <= " + flit(-1.00003f) + " ? -1 : 0);\n";
-    if (gs) {
-        // Everything whole-primitive (discard, near clipping, culling, the fragment shader's
-        // inputs) is the geometry shader's (hw_geometry.cpp); it needs the ClipVertex.
-        s += "  g_clip = clip;\n"
-             "  g_color = prim;\n"
-             "  g_color2 = sec;\n";
-        s += std::string("  g_stqf = vec4(") + (k.texture ? "ts, tt, tq" : "0.0, 0.0, 1.0") + ", " +
-             (k.fog ? "fogF" : "1.0") + ");\n";
-        s += "  g_scr = ivec4(x16, y16, depthToInt(zs), (outside ? 1 : 0) | (side == -1 ? 2 : 0) | (side == 1 ? 4 : 0));\n"
-             "}\n";
-        out = std::move(s);
-        return true;
-    }
-    s += k.clipEnable ? "  bool drop = outside;\n" : "  bool drop = outside || side != 0;\n";
+}
 
-    // ---- outputs (translator/vertex_pipeline.cpp toGl + emitTriangle) ----
-    const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
-    s += "  v_color = vec4(prim);\n"
-         "  v_color2 = vec3(sec);\n"
-         "  v_z = float(depthToInt(zs));\n";
-    s += k.fog ? "  v_fog = fogF;\n" : "  v_fog = 1.0;\n";
-    if (k.texture) {
-        // Perspective: s/w, t/w, q/w interpolate linearly on screen; w (finite, non-zero) for TLEVEL.
-        s += "  PRECISE float tw = (notFinite(w) || w == 0.0) ? 1.0 : w;\n"
-             "  float kw = fdiv(1.0, tw);\n"
-             "  PRECISE vec4 tex = vec4(ts * kw, tt * kw, tq * kw, tw);\n"
-             "  v_tex = tex;\n";
-    } else {
-        s += "  v_tex = vec4(0.0, 0.0, 1.0, 1.0);\n";
+// Transform mode: decode, transform, fog, world normal, texture coordinates, lighting, screen;
+// then the ClipVertex. Everything whole-primitive (discard, near clipping, culling, the fragment
+// shader's inputs) is the geometry shader's (hw_geometry.cpp).
+void emitTransformMode(std::string& s, const HwVsKey& k) {
+    Need need{};
+    // A positional light needs the world position (makeTransformState).
+    for (int n = 0; n < 4; ++n) need.worldPos = need.worldPos || (k.lighting && k.lightType[n] >= 2);
+    need.uv = k.texture && (k.texMap == 0 || (k.texMap == 1 && k.projSource == 1));
+    const bool worldNormal = k.lighting || (k.texture && k.texMap == 2);
+    need.normal = worldNormal || (k.texture && k.texMap == 1 && k.projSource >= 2);
+    need.color = !k.lighting || k.ambientFromVertex || k.diffuseFromVertex || k.specularFromVertex;
+    need.fogZ = k.fog != 0;
+    need.world = need.worldPos || need.fogZ;
+
+    emitDecode(s, k, need);
+    emitTransform(s, k, need);
+    if (k.fog) emitFogFactor(s);
+    // World normal for lighting and shade mapping, normalised; (0, 0, 1) without a normal.
+    if (worldNormal) {
+        if (k.nrm) {
+            mul3x4(s, "wn", HW_WORD(world), "normal", false);
+            s += "  normalizeOr001(wn);\n";
+        } else {
+            s += "  PRECISE vec3 wn = vec3(0.0, 0.0, 1.0);\n";
+        }
     }
-    // Drawing position x16/16 moved by (8 − o)/16 to GL's pixel-centre sampling, then to NDC as
-    // the existing vertex shader does; times w so that GL can clip in homogeneous space.
-    s += "  PRECISE float gx = float(x16) * 0.0625;\n"
-         "  PRECISE float gy = float(y16) * 0.0625;\n"
-         "  gx = gx + " + flit(shift) + ";\n"
-         "  gy = gy + " + flit(shift) + ";\n"
-         "  PRECISE float nx = gx * u_ndcScale.x - 1.0;\n"
-         "  PRECISE float ny = gy * u_ndcScale.y - 1.0;\n"
-         "  PRECISE vec4 P = vec4(nx * w, ny * w, 0.0, w);\n"
-         "  if (clip.z < -clip.w) {\n"
-         // Beyond the near plane: only its clipped replacement is drawn, computed by GL from
-         // this position; the exact homogeneous (unsnapped) one keeps the cut on the CPU's line.
-         "    PRECISE float cx = (" + uf(vp + 3) + " + (0.375 - float(" + ui(off) + ")) * 0.0625 + " + flit(shift) +
-         ") * u_ndcScale.x - 1.0;\n"
-         "    PRECISE float cy = (" + uf(vp + 4) + " + (0.375 - float(" + ui(off + 1) + ")) * 0.0625 + " + flit(shift) +
-         ") * u_ndcScale.y - 1.0;\n"
-         "    P.x = clip.x * (" + uf(vp) + " * u_ndcScale.x) + w * cx;\n"
-         "    P.y = clip.y * (" + uf(vp + 1) + " * u_ndcScale.y) + w * cy;\n"
-         "  }\n"
-         // A vertex breaking a screen-range or depth rule drops every primitive using it.
-         "  gl_Position = drop ? vec4(uintBitsToFloat(0x7FC00000u)) : P;\n"
-         "  gl_ClipDistance[0] = clip.z + clip.w;\n"
-         "#ifdef GE_CULL\n";
-    if (k.clipEnable) {
-        // CLE = 1: dropped when every vertex is beyond the same plane (far, near).
-        s += "  gl_CullDistance[0] = side == 1 ? -1.0 : 1.0;\n"
-             "  gl_CullDistance[1] = side == -1 ? -1.0 : 1.0;\n";
+    if (k.texture) emitTexture(s, k);
+    if (k.lighting) {
+        emitLighting(s, k);
     } else {
-        s += "  gl_CullDistance[0] = 1.0;\n"
-             "  gl_CullDistance[1] = 1.0;\n";
+        s += "  ivec4 prim = vcol;\n  ivec3 sec = ivec3(0);\n";
     }
-    // Three vertices with w < 0: dropped (ge-rules.md §8.5).
-    s += "  gl_CullDistance[2] = w < 0.0 ? -1.0 : 1.0;\n"
-         "#endif\n"
+    emitProjectToScreen(s, k);
+    s += "  g_clip = clip;\n"
+         "  g_color = prim;\n"
+         "  g_color2 = sec;\n";
+    s += std::string("  g_stqf = vec4(") + (k.texture ? "ts, tt, tq" : "0.0, 0.0, 1.0") + ", " +
+         (k.fog ? "fogF" : "1.0") + ");\n";
+    s += "  g_scr = ivec4(x16, y16, depthToInt(zs), (outside ? 1 : 0) | (side == -1 ? 2 : 0) | (side == 1 ? 4 : 0));\n"
          "}\n";
+}
+
+}  // namespace
+
+bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err) {
+    (void)caps;  // host features are chosen by the GLSL preprocessor (hw_vertex.h)
+    (void)err;
+    HwVsKey k = key;
+    canonicalize(k);
+    std::string s;
+    glsl::hwPreamble(s, describe(k));
+    s += "uniform usamplerBuffer u_vtx;\n"
+         "uniform uvec4 u_hw[" + std::to_string(kHwVsUniformVec4) + "];\n";
+    // The CPU's ClipVertex, for the geometry shader (hw_vertex.h; names shared with
+    // hw_geometry.cpp).
+    s += "out vec4 g_clip;\n"
+         "flat out ivec4 g_color;\n"
+         "flat out ivec3 g_color2;\n"
+         "out vec4 g_stqf;\n"
+         "flat out ivec4 g_scr;\n";
+    s += kFetchHelpers;
+    s += glsl::kFloatClass;
+    s += kSignHelpers;
+    s += glsl::kFdiv;
+    s += kGeMathHelpers;
+    s += glsl::kScreenRound;
+    s += "void main() {\n";
+    if (k.pos == 0) {
+        // No position: the vertex is dropped (ge-rules.md §8.11).
+        s += "  g_clip = vec4(0.0, 0.0, 0.0, 1.0);\n  g_color = ivec4(0);\n  g_color2 = ivec3(0);\n"
+             "  g_stqf = vec4(0.0, 0.0, 1.0, 1.0);\n  g_scr = ivec4(0, 0, 0, 8);\n}\n";
+    } else if (k.through) {
+        emitThrough(s, k);
+    } else {
+        emitTransformMode(s, k);
+    }
     out = std::move(s);
     return true;
 }

@@ -10,8 +10,8 @@
 //                           (geTerm), viewport, 1/16-pixel snap x16 = trunc(Xs·16 + 0.375) − OFFX,
 //                           depth clamp, fog factor, texture mapping (UV, projection, shade)
 //   geometry/lighting       the fixed-point light combination of docs/ge-rules.md §8.3
-// The geometry shader (HwVsKey::geometryShader = 1, generateHwGeometryShader) reproduces
-// translator/vertex_pipeline.cpp VertexPipeline::triangle for transform-mode triangles:
+// The geometry shader (generateHwGeometryShader) reproduces translator/vertex_pipeline.cpp
+// VertexPipeline::triangle for transform-mode triangles:
 //   geometry/clip           discardPrimitive (ge-rules.md §8.5), the all-w < 0 drop, clipTriangleNear with
 //                           lerpVertex (clip-space interpolation, 8-bit colour weights, the new
 //                           vertex projected and snapped), the fan-piece drop for new vertices off
@@ -33,7 +33,6 @@
 // GL guarantees only 65536 texels in a buffer texture (GL_MAX_TEXTURE_BUFFER_SIZE; llvmpipe and
 // desktop drivers allow far more): a draw needs its vertex bytes to fit in the caller's limit.
 //
-// ---- With the geometry shader (key.geometryShader = 1; the way to draw) ----
 // Vertex shader outputs, read only by the geometry shader (per vertex, the CPU's ClipVertex):
 //   g_clip    vec4         clip coordinates (ClipVertex::clip; its w is ScreenVertex::w)
 //   g_color   flat ivec4   primary RGBA 0..255 (ScreenVertex::color, lit or the vertex colour)
@@ -81,26 +80,11 @@
 // budget (VertexPipeline::notePrimitive) is not applied; strips whose quads the CPU draws as
 // rectangles (geometry/assembly.h stripQuadAsRect, culling off) are the caller's to keep away.
 //
-// ---- Without (key.geometryShader = 0: the vertex shader alone; the translator always attaches
-// the geometry shader (translator/gpu_vertex_path.cpp), so only the tests compile this form) ----
-// Outputs v_color, v_color2, v_tex, v_fog, v_z as above per vertex, and
-//   gl_Position  (ndc.x·w, ndc.y·w, 0, w): ndc from the snapped drawing position as above, w the
-//                clip W so that GL's clipper can cut the GE's near plane. A vertex that breaks a
-//                ge-rules.md §8.5 "drop the primitive" rule gets a NaN position (the rasteriser then draws no
-//                primitive using it, as PPSSPP's GLES vertex shader does).
-//   gl_ClipDistance[0] = z_clip + w_clip: the GE's near plane (geometry/clip.h beyondNear). The
-//                caller must glEnable(GL_CLIP_DISTANCE0), and culls with GL face culling.
-//   gl_CullDistance[0..2] (GL_ARB_cull_distance / GL 4.5): far side, near side (|z/w| ≥ 1.00003,
-//                CLE = 1: dropped only when all vertices are beyond the same plane) and w < 0
-//                (a triangle whose three vertices have w < 0 is dropped).
-// GL's clipper differs from the GE's for triangles that cross the near plane (hw_vertex.cpp).
-//
 // Host features: the shaders are GLSL 3.30 and enable, where the driver has them,
 // GL_ARB_gpu_shader_fp64 (correctly rounded float divisions, the double-precision normalisation
-// of geometry/lighting normalizeOr001 and an accurate pow), GL_ARB_gpu_shader5 (`precise`: no
-// fused multiply-add) and (vertex shader alone) GL_ARB_cull_distance. Without them they still
-// compile, with float approximations (divisions, normalisation, pow may then differ by an ulp).
-// llvmpipe and desktop GL 4.5 drivers have all three.
+// of geometry/lighting normalizeOr001 and an accurate pow) and GL_ARB_gpu_shader5 (`precise`: no
+// fused multiply-add). Without them they still compile, with float approximations (divisions,
+// normalisation, pow may then differ by an ulp). llvmpipe and desktop GL 4.5 drivers have both.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -142,12 +126,10 @@ struct HwVsKey {
     u8 normalReverse = 0;  // NREV, kept only when a normal is read and used
     u8 clipEnable = 0;   // CLE: depth clamp and the discard rule (ge-rules.md §8.5)
     u8 flatShade = 0;    // SHADE = 0 or clear mode: colour outputs are `flat`
-    // ---- set by the caller after hwVsKeyFromState (which leaves both 0) ----
-    u8 geometryShader = 0;  // 1: the vertex shader feeds generateHwGeometryShader (see above);
-                            // 0: the vertex shader alone (GL clipping and culling; tests only)
-    u8 primKind = 0;     // with geometryShader: the PRIM type drawn, 0 triangles (GL_TRIANGLES),
-                         // 1 triangle strip (GL_TRIANGLE_STRIP), 2 triangle fan (GL_TRIANGLE_FAN);
-                         // canonicalised to 0 without geometryShader or when above 2
+    // ---- set by the caller after hwVsKeyFromState (which leaves it 0) ----
+    u8 primKind = 0;     // the PRIM type drawn (the geometry shader's ring order): 0 triangles
+                         // (GL_TRIANGLES), 1 triangle strip (GL_TRIANGLE_STRIP), 2 triangle fan
+                         // (GL_TRIANGLE_FAN); canonicalised to 0 when above 2
     // ---- through mode (VTYPE bit 23, ge-rules.md §5.5, §8.1) ----
     u8 through = 0;      // 1: positions and UV as given (no normalisation, no morphing, no
                          // skinning), no transform, lighting, texture mapping, fog, discard rules
@@ -156,7 +138,7 @@ struct HwVsKey {
                          // LMODE flags, texMap, projSource, fog, normalReverse and clipEnable
                          // (the CPU ignores them), and keeps every layout field (tc, col, nrm, pos,
                          // weights, weightCount, morphCount: they set the offsets and the stride)
-    u8 reserved[2] = {};
+    u8 reserved[3] = {};
 };
 static_assert(sizeof(HwVsKey) == 32, "HwVsKey: every byte must be a named field");
 
@@ -221,13 +203,13 @@ void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u);
 // GLSL for a key. False + err only for keys the generator cannot express (none today).
 bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err = nullptr);
 
-// GLSL of the geometry shader that goes with generateHwVertexShader(key) when
-// key.geometryShader = 1 (implemented in hw_geometry.cpp). It reads u_hw (viewport, offsets, cull)
-// and u_ndcScale, and depends on the key's primKind, clipEnable, flatShade and texture. False +
-// err when key.geometryShader is 0.
+// GLSL of the geometry shader that goes with generateHwVertexShader(key) (implemented in
+// hw_geometry.cpp). It reads u_hw (viewport, offsets, cull) and u_ndcScale, and depends on the
+// key's primKind, clipEnable, flatShade, texture and through. False + err only for keys the
+// generator cannot express (none today).
 //
 // What the caller does per draw (translator/gpu_vertex_path.cpp):
-//   key = hwVsKeyFromState(st, texture, fog); key.geometryShader = 1;
+//   key = hwVsKeyFromState(st, texture, fog);
 //   key.primKind = 0 / 1 / 2 for GE_PRIM_TRIANGLES / _TRIANGLE_STRIP / _TRIANGLE_FAN;
 //   program = VS(key) + GS(key) + FS; u_hw = hwVsUniformsFromState(st) (which fills `cull`:
 //   culling now follows BCE/CULL from the state, as VertexSettings::fromState); u_ndcScale;
@@ -242,7 +224,7 @@ namespace hwuniform {
 inline constexpr const char* kBlock = "u_hw";          // uvec4[kHwVsUniformVec4]: HwVsUniforms
 inline constexpr const char* kVertexBytes = "u_vtx";   // usamplerBuffer (R8UI): the draw's vertex bytes
 inline constexpr const char* kNdcScale = "u_ndcScale";  // vec2: as shader_gen.h uniform::kNdcScale
-// (read by the geometry shader with key.geometryShader = 1, else by the vertex shader)
+                                                        // (read by the geometry shader)
 }  // namespace hwuniform
 // Texture unit suggested for u_vtx (units 0–3 are the fragment shader's, shader_gen.h).
 inline constexpr int kUnitVertexBytes = 4;

@@ -34,16 +34,14 @@ void canonicalize(HwVsKey& k) {
     k.weightCount = k.weights ? u8(k.weightCount < 1 ? 1 : (k.weightCount > 8 ? 8 : k.weightCount)) : 0;
     k.morphCount = u8(k.morphCount < 1 ? 1 : (k.morphCount > 8 ? 8 : k.morphCount));
     std::memset(k.reserved, 0, sizeof k.reserved);
-    k.geometryShader = k.geometryShader ? 1 : 0;
     // The primitive kind only changes the geometry shader (its ring order, hw_geometry.cpp).
-    if (!k.geometryShader || k.primKind > 2) k.primKind = 0;
+    if (k.primKind > 2) k.primKind = 0;
     if (k.pos == 0) {
         // No position: every vertex is dropped (ge-rules.md §8.11); only the layout remains meaningful (and
         // which outputs the vertex shader has).
         HwVsKey c;
         c.tc = k.tc, c.col = k.col, c.nrm = k.nrm, c.weights = k.weights, c.weightCount = k.weightCount;
         c.morphCount = k.morphCount;
-        c.geometryShader = k.geometryShader;
         k = c;
         return;
     }
@@ -152,11 +150,9 @@ std::string describe(const HwVsKey& k) {
     if (k.normalReverse) s += " nrev";
     if (k.clipEnable) s += " cle";
     s += k.flatShade ? " flat" : " gouraud";
-    if (k.geometryShader) {
-        static const char* const kPrim[3] = {"list", "strip", "fan"};
-        s += " gs=";
-        s += kPrim[k.primKind > 2 ? 0 : k.primKind];
-    }
+    static const char* const kPrim[3] = {"list", "strip", "fan"};
+    s += " gs=";
+    s += kPrim[k.primKind > 2 ? 0 : k.primKind];
     return s;
 }
 

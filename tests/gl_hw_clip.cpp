@@ -195,7 +195,6 @@ Result runScene(Harness* H, const Scene& sc, const GsEdit* edit = nullptr) {
     const std::vector<u8> bytes = vertexBytes(sc);
     const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
     sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
-    key.geometryShader = 1;
     key.primKind = u8(sc.prim == GE_PRIM_TRIANGLE_STRIP ? 1 : (sc.prim == GE_PRIM_TRIANGLE_FAN ? 2 : 0));
     sg::canonicalize(key);
     sg::HwVsUniforms u;
@@ -619,7 +618,6 @@ TEST(GlHwClip, LinksWithTheFragmentShaders) {
         ASSERT_TRUE(sg::generateFragmentShader(keys.fs, caps, fs, &log)) << log;
         const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
         sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
-        key.geometryShader = 1;
         key.primKind = u8(i % 3);
         // Every other one as drivers without doubles get it (float divisions).
         const GsEdit noFp64{"#extension GL_ARB_gpu_shader_fp64 : enable\n",
@@ -655,7 +653,6 @@ std::vector<u32> render(Harness* H, const Scene& sc) {
     std::vector<u32> px(size_t(kTargetW) * kTargetH, 0);
     const GeState st = sceneState(sc);
     sg::HwVsKey key = sg::hwVsKeyFromState(st, false, false);
-    key.geometryShader = 1;
     key.primKind = u8(sc.prim == GE_PRIM_TRIANGLE_STRIP ? 1 : (sc.prim == GE_PRIM_TRIANGLE_FAN ? 2 : 0));
     sg::HwVsUniforms u;
     sg::hwVsUniformsFromState(st, u);

@@ -184,7 +184,6 @@ bool same(float a, float b) { return (std::isnan(a) && std::isnan(b)) || a == b;
 sg::HwVsKey sceneKey(const GeState& st, const Scene& sc) {
     const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
     sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
-    key.geometryShader = 1;
     key.primKind = u8(sc.prim == GE_PRIM_TRIANGLE_STRIP ? 1 : (sc.prim == GE_PRIM_TRIANGLE_FAN ? 2 : 0));
     sg::canonicalize(key);
     return key;
@@ -360,13 +359,10 @@ TEST(GlHwThrough, KeyFromStateAndCanonicalForm) {
     sg::hwVsUniformsFromState(st, u);
     EXPECT_EQ(u.texScale[0], 1.0f / 64.0f);
     EXPECT_EQ(u.texScale[1], 1.0f / 32.0f);
-    // Vertex shader sources with and without the geometry shader generate.
-    sg::HwVsKey g = k;
+    // The vertex and geometry shader sources generate.
     std::string src;
-    EXPECT_TRUE(sg::generateHwVertexShader(g, sg::HostCaps{}, src));
-    g.geometryShader = 1;
-    EXPECT_TRUE(sg::generateHwVertexShader(g, sg::HostCaps{}, src));
-    EXPECT_TRUE(sg::generateHwGeometryShader(g, sg::HostCaps{}, src));
+    EXPECT_TRUE(sg::generateHwVertexShader(k, sg::HostCaps{}, src));
+    EXPECT_TRUE(sg::generateHwGeometryShader(k, sg::HostCaps{}, src));
     EXPECT_NE(src.find("#define GE_THROUGH 1"), std::string::npos);
 }
 

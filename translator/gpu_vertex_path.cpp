@@ -90,7 +90,6 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
     out.key = shadergen::hwVsKeyFromState(st, texture, fog);
     // The geometry shader does what needs the whole primitive: the discard rules, near clipping
     // in the reference's vertex order (which needs the primitive kind), culling.
-    out.key.geometryShader = 1;
     out.key.primKind = mode == GL_TRIANGLE_STRIP ? 1 : (mode == GL_TRIANGLE_FAN ? 2 : 0);
     const u32 stride = shadergen::hwVsStride(out.key);
     if (stride == 0) return reject(CpuReason::Memory);

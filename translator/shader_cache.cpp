@@ -65,7 +65,7 @@ const Program* ProgramCache::getImpl(const Key& key, std::string* err) {
     const bool vsOk = key.hwVertex ? shadergen::generateHwVertexShader(key.hw, caps_, vsSrc, err)
                                    : shadergen::generateVertexShader(key.vs, caps_, vsSrc, err);
     if (!vsOk) return nullptr;
-    if (key.hwVertex && key.hw.geometryShader && !shadergen::generateHwGeometryShader(key.hw, caps_, gsSrc, err))
+    if (key.hwVertex && !shadergen::generateHwGeometryShader(key.hw, caps_, gsSrc, err))
         return nullptr;
     if (!shadergen::generateFragmentShader(key.fs, caps_, fsSrc, err)) return nullptr;
     const std::string all =
