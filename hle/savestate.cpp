@@ -226,12 +226,8 @@ void serialise(Archive& a, ListRegs& l) {
     for (auto& f : l.signalStack) a.u32v(f.pc), a.u32v(f.offset), a.u32v(f.base);
     a.u32v(l.signalStackMax);
     a.require(l.signalStackMax <= kMaxSignalStack);
-    a.b(l.pauseAtFinish);
-    a.b(l.syncAtFinish);
-    a.u32v(l.pauseSignalArg);
-    a.u32v(l.pauseEndArg);
-    a.u32v(l.lastOp);
-    a.u32v(l.lastWord);
+    a.b(l.pauseAtFinish), a.b(l.syncAtFinish);
+    for (u32* v : {&l.pauseSignalArg, &l.pauseEndArg, &l.lastOp, &l.lastWord}) a.u32v(*v);
 }
 
 void serialise(Archive& a, GeStats& s) {
@@ -294,17 +290,12 @@ void serialise(Archive& a, std::deque<int>& d) {
 void serialise(Archive& a, SceGe::Saved& s, u32& edramTranslation) {
     for (auto& dl : s.lists) {
         a.en(dl.state, SceListState::Completed);
-        a.u32v(dl.startPc);
-        a.u32v(dl.stall);
+        a.u32v(dl.startPc), a.u32v(dl.stall);
         a.s32v(dl.cbid);
-        a.u32v(dl.contextAddr);
-        a.u32v(dl.numStacks);
-        a.u32v(dl.stackAddr);
-        a.b(dl.started);
-        a.b(dl.hung);
+        for (u32* v : {&dl.contextAddr, &dl.numStacks, &dl.stackAddr}) a.u32v(*v);
+        a.b(dl.started), a.b(dl.hung);
         serialise(a, dl.regs);
-        a.u32v(dl.offset);
-        a.u32v(dl.base);
+        a.u32v(dl.offset), a.u32v(dl.base);
         a.u64v(dl.cycles);
     }
     for (auto& cb : s.callbacks) {
@@ -314,12 +305,8 @@ void serialise(Archive& a, SceGe::Saved& s, u32& edramTranslation) {
     serialise(a, s.queue);
     serialise(a, s.freeSlots);
     a.s32v(s.active);
-    a.b(s.brokeInCallback);
-    a.b(s.finishPending);
-    a.u32v(s.finishArg);
-    a.u32v(s.finishPc);
-    a.u32v(s.sdkVersion);
-    a.u32v(edramTranslation);
+    a.b(s.brokeInCallback), a.b(s.finishPending);
+    for (u32* v : {&s.finishArg, &s.finishPc, &s.sdkVersion, &edramTranslation}) a.u32v(*v);
 }
 
 void serialise(Archive& a, HostFlags& h) { a.b(h.heldInterrupt); }
