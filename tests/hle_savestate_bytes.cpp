@@ -107,6 +107,13 @@ TEST(SaveStateBytes, NontrivialStateSavesToThePinnedBytes) {
     s32 stalled = -1;
     buildState(g, stalled);
     ASSERT_GT(g.eng.stats().prims, 0u);
+    int paused = 0, queued = 0;
+    for (const auto& dl : g.sce.saved().lists) {
+        paused += dl.state == SceListState::Paused;
+        queued += dl.state == SceListState::Queued;
+    }
+    ASSERT_EQ(paused, 1);
+    ASSERT_EQ(queued, 1);
     const std::vector<u8> blob = savestate::save(g.eng, g.sce, nullptr, savestate::HostFlags{true});
     // The header's xxHash64 covers the whole payload: size and hash pin every byte (values from the
     // format-version-3 writer as first released).
