@@ -45,38 +45,12 @@ void GeEngine::setRenderer(Renderer* r) {
 
 GeEngine::Saved GeEngine::saved() const {
     Saved s;
-    s.state = state_;
-    s.list = list_;
-    s.stats = stats_;
-    s.status = status_;
-    s.lastError = lastError_;
-    s.lastErrorMsg = lastErrorMsg_;
-    s.cycleLimit = cycleLimit_;
-    s.pauseRequested = pauseRequested_;
-    s.stopRequested = stopRequested_;
-    s.stopStatus = stopStatus_;
-    s.lastPrim = lastPrim_;
-    s.immVerts = immVerts_;
-    s.immFlags = immFlags_;
-    s.immPrim = immPrim_;
+    Saved::fields(s) = savedFields(*this);
     return s;
 }
 
 void GeEngine::restore(const Saved& s) {
-    state_ = s.state;
-    list_ = s.list;
-    stats_ = s.stats;
-    status_ = s.status;
-    lastError_ = s.lastError;
-    lastErrorMsg_ = s.lastErrorMsg;
-    cycleLimit_ = s.cycleLimit;
-    pauseRequested_ = s.pauseRequested;
-    stopRequested_ = s.stopRequested;
-    stopStatus_ = s.stopStatus;
-    lastPrim_ = s.lastPrim;
-    immVerts_ = s.immVerts;
-    immFlags_ = s.immFlags;
-    immPrim_ = s.immPrim;
+    savedFields(*this) = Saved::fields(s);
     // The renderer's pixel count is its own (a fresh backend starts at 0): charge from here on.
     pixelWorkSeen_ = renderer_->pixelWork();
     if (pixelBudgetSet_) renderer_->setPixelBudget(~u64(0)), pixelBudgetSet_ = false;

@@ -7,6 +7,7 @@
 // list ends, reaches its stall address, pauses, errors, or the command budget is used up.
 #pragma once
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "hle/ge_state.h"
@@ -171,6 +172,13 @@ public:
         std::vector<ImmVertex> immVerts;  // an immediate-mode primitive being collected
         u32 immFlags = 0;
         GePrimType immPrim = GE_PRIM_POINTS;
+        // The fields in order (of a Saved or a const one): saved() and restore() copy them to and
+        // from the engine's members (savedFields()) as one tuple each way.
+        template <class S>
+        static auto fields(S& s) {
+            return std::tie(s.state, s.list, s.stats, s.status, s.lastError, s.lastErrorMsg, s.cycleLimit, s.pauseRequested,
+                            s.stopRequested, s.stopStatus, s.lastPrim, s.immVerts, s.immFlags, s.immPrim);
+        }
     };
     Saved saved() const;
     // Restores a saved engine: every dirty group is raised and the renderer is told the palette
@@ -178,6 +186,13 @@ public:
     void restore(const Saved& s);
 
 private:
+    // The members Saved keeps, in Saved::fields() order (for the engine itself or a const one).
+    template <class Self>
+    static auto savedFields(Self& e) {
+        return std::tie(e.state_, e.list_, e.stats_, e.status_, e.lastError_, e.lastErrorMsg_, e.cycleLimit_,
+                        e.pauseRequested_, e.stopRequested_, e.stopStatus_, e.lastPrim_, e.immVerts_, e.immFlags_,
+                        e.immPrim_);
+    }
     void fail(GeError e, const std::string& msg);
     void doPrim(u32 arg);
     void latchVertexAttributes(const PrimPacket& p);

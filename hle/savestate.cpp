@@ -23,28 +23,21 @@ constexpr u32 kEngine = tag("ENGN"), kSce = tag("SCGE"), kHost = tag("HOST");
 constexpr u32 kV3 = tag("GEV3");
 constexpr u32 kRam = tag("RAM "), kVram = tag("VRAM"), kScratch = tag("SCRA");
 
-// Little-endian writer.
+// Little-endian writer, for the header, section framing and compressed memory (the sections'
+// bodies go through an Archive).
 class Writer {
 public:
     std::vector<u8> buf;
-    void u8v(u8 v) { buf.push_back(v); }
-    void b(bool v) { u8v(v ? 1 : 0); }
     void u32v(u32 v) {
         for (int i = 0; i < 4; ++i) buf.push_back(u8(v >> (8 * i)));
     }
-    void s32v(s32 v) { u32v(u32(v)); }
     void u64v(u64 v) {
         u32v(u32(v));
         u32v(u32(v >> 32));
     }
-    void f(float v) { u32v(std::bit_cast<u32>(v)); }
     void bytes(const void* p, size_t n) {
         const u8* b8 = static_cast<const u8*>(p);
         buf.insert(buf.end(), b8, b8 + n);
-    }
-    void str(const std::string& s) {
-        u32v(u32(s.size()));
-        bytes(s.data(), s.size());
     }
     // A section: tag, byte size, body written by `body`.
     template <class F>
@@ -58,20 +51,106 @@ public:
     }
 };
 
-// Bounds-checked reader: past the end every read yields 0 and ok() turns false.
+// One sequence of values in either direction, as Dolphin's PointerWrap: writing, each call
+// appends its value to the writer; reading, each call reads the next value into its argument.
+// A section is described once, by a serialise() function that runs in both modes. Reading is
+// bounds-checked: past the end every value reads as 0 and ok() turns false; require() fails the
+// read when a value read is out of its range (writing, the values are the engine's own and never
+// checked). version() is the blob's format version (kFormatVersion when writing).
+class Archive {
+public:
+    explicit Archive(Writer& w) : w_(&w), version_(kFormatVersion) {}
+    Archive(const u8* p, size_t n, u32 version) : p_(p), end_(p + n), version_(version) {}
+    bool reading() const { return w_ == nullptr; }
+    u32 version() const { return version_; }
+    bool ok() const { return ok_; }
+    bool atEnd() const { return p_ == end_; }
+    size_t left() const { return size_t(end_ - p_); }
+    void require(bool good) { ok_ = ok_ && (!reading() || good); }
+
+    void u8v(u8& v) {
+        if (!reading()) w_->buf.push_back(v);
+        else v = need(1) ? *p_++ : 0;
+    }
+    void u32v(u32& v) {
+        if (!reading()) return w_->u32v(v);
+        v = 0;
+        if (!need(4)) return;
+        for (int i = 0; i < 4; ++i) v |= u32(p_[i]) << (8 * i);
+        p_ += 4;
+    }
+    void s32v(s32& v) { cast<u32>(v, [this](u32& x) { u32v(x); }); }
+    void u64v(u64& v) {
+        u32 lo = u32(v), hi = u32(v >> 32);
+        u32v(lo);
+        u32v(hi);
+        v = lo | u64(hi) << 32;
+    }
+    void f(float& v) { cast<u32>(v, [this](u32& x) { u32v(x); }); }
+    void b(bool& v) {
+        u8 x = v ? 1 : 0;
+        u8v(x);
+        require(x <= 1);
+        v = x == 1;
+    }
+    // An enum stored as a byte, at most `last`.
+    template <class E>
+    void en(E& v, E last) {
+        u8 x = u8(v);
+        u8v(x);
+        require(x <= u8(last));
+        v = E(ok_ ? x : 0);
+    }
+    void bytes(void* p, size_t n) {
+        if (!reading()) return w_->bytes(p, n);
+        if (!need(n)) return;
+        std::memcpy(p, p_, n);
+        p_ += n;
+    }
+    // A u32 length, then the characters; reading refuses more than `maxLen`.
+    void str(std::string& s, size_t maxLen) {
+        u32 n = u32(s.size());
+        u32v(n);
+        require(n <= maxLen);
+        if (!reading()) return w_->bytes(s.data(), s.size());
+        s.clear();
+        if (ok_ && need(n)) {
+            s.assign(reinterpret_cast<const char*>(p_), n);
+            p_ += n;
+        }
+    }
+    // Reading: a container gets `n` default elements once `n` passed its checks.
+    template <class C>
+    void resize(C& c, u32 n) {
+        if (reading()) c.resize(ok_ ? n : 0);
+    }
+
+private:
+    // A value stored as the bits of another type T.
+    template <class T, class V, class F>
+    void cast(V& v, F&& io) {
+        T x = std::bit_cast<T>(v);
+        io(x);
+        v = std::bit_cast<V>(x);
+    }
+    bool need(size_t n) {
+        if (!ok_ || left() < n) return ok_ = false;
+        return true;
+    }
+    Writer* w_ = nullptr;
+    const u8* p_ = nullptr;
+    const u8* end_ = nullptr;
+    u32 version_;
+    bool ok_ = true;
+};
+
+// Bounds-checked reader for the header and section framing.
 class Reader {
 public:
     Reader(const u8* p, size_t n) : p_(p), end_(p + n) {}
     bool ok() const { return ok_; }
     bool atEnd() const { return p_ == end_; }
     size_t left() const { return size_t(end_ - p_); }
-    void failIf(bool bad) { ok_ = ok_ && !bad; }
-    u8 u8v() { return need(1) ? *p_++ : 0; }
-    bool b() {
-        const u8 v = u8v();
-        failIf(v > 1);
-        return v == 1;
-    }
     u32 u32v() {
         if (!need(4)) return 0;
         u32 v = 0;
@@ -79,34 +158,15 @@ public:
         p_ += 4;
         return v;
     }
-    s32 s32v() { return s32(u32v()); }
     u64 u64v() {
         const u64 lo = u32v();
         return lo | u64(u32v()) << 32;
     }
-    float f() { return std::bit_cast<float>(u32v()); }
     const u8* bytes(size_t n) {
         if (!need(n)) return nullptr;
         const u8* r = p_;
         p_ += n;
         return r;
-    }
-    void bytesTo(void* dst, size_t n) {
-        if (const u8* s = bytes(n)) std::memcpy(dst, s, n);
-    }
-    std::string str(size_t maxLen) {
-        const u32 n = u32v();
-        failIf(n > maxLen);
-        if (!ok_) return {};
-        const u8* s = bytes(n);
-        return s ? std::string(reinterpret_cast<const char*>(s), n) : std::string();
-    }
-    // An enum stored as a byte, at most `last`.
-    template <class E>
-    E en(E last) {
-        const u8 v = u8v();
-        failIf(v > u8(last));
-        return E(ok_ ? v : 0);
     }
 
 private:
@@ -121,39 +181,24 @@ private:
 
 // ---- the engine ----------------------------------------------------------------------------
 
-void putState(Writer& w, const GeState& s) {
-    for (u32 r : s.regs) w.u32v(r);
-    for (float v : s.bone) w.f(v);
-    for (float v : s.world) w.f(v);
-    for (float v : s.view) w.f(v);
-    for (float v : s.proj) w.f(v);
-    for (float v : s.tgen) w.f(v);
-    for (u32 v : {s.boneNum, s.worldNum, s.viewNum, s.projNum, s.tgenNum, s.vertexAddr, s.indexAddr, s.offsetAddr})
-        w.u32v(v);
-    w.bytes(s.clut, sizeof s.clut);
-    w.u32v(s.clutLoadedBytes);
-    for (float v : s.latchUV) w.f(v);
-    for (float v : s.latchNormal) w.f(v);
-}
-
-void getState(Reader& r, GeState& s, u32 version) {
-    for (u32& v : s.regs) v = r.u32v();
-    for (float& v : s.bone) v = r.f();
-    for (float& v : s.world) v = r.f();
-    for (float& v : s.view) v = r.f();
-    for (float& v : s.proj) v = r.f();
-    for (float& v : s.tgen) v = r.f();
+void serialise(Archive& a, GeState& s) {
+    for (u32& v : s.regs) a.u32v(v);
+    auto floats = [&a](auto& arr) {
+        for (float& v : arr) a.f(v);
+    };
+    floats(s.bone), floats(s.world), floats(s.view), floats(s.proj), floats(s.tgen);
     for (u32* v : {&s.boneNum, &s.worldNum, &s.viewNum, &s.projNum, &s.tgenNum, &s.vertexAddr, &s.indexAddr,
                    &s.offsetAddr})
-        *v = r.u32v();
-    r.bytesTo(s.clut, sizeof s.clut);
-    s.clutLoadedBytes = r.u32v();
-    r.failIf(s.clutLoadedBytes > sizeof s.clut);
+        a.u32v(*v);
+    a.bytes(s.clut, sizeof s.clut);
+    a.u32v(s.clutLoadedBytes);
+    a.require(s.clutLoadedBytes <= sizeof s.clut);
     // Version 1 had no vertex latch: a state from it resumes with zeros (a fresh GE's values).
-    if (version >= 2) {
-        for (float& v : s.latchUV) v = r.f();
-        for (float& v : s.latchNormal) v = r.f();
+    if (a.version() >= 2) {
+        for (float& v : s.latchUV) a.f(v);
+        for (float& v : s.latchNormal) a.f(v);
     }
+    if (!a.reading()) return;
     // Until the state's GEV3 section (version 3) says otherwise, the read-back matrix words are
     // the drawn ones.
     const float* mats[5] = {s.bone, s.world, s.view, s.proj, s.tgen};
@@ -161,201 +206,120 @@ void getState(Reader& r, GeState& s, u32 version) {
     for (int m = 0; m < 5; ++m)
         for (u32 k = 0; k < count[m]; ++k) s.visibleMtx[base[m] + k] = toFloat24(mats[m][k]);
     // A register word holds its own opcode in bits 31..24 (or 0 when never written).
-    for (size_t op = 0; op < s.regs.size(); ++op) r.failIf(s.regs[op] != 0 && (s.regs[op] >> 24) != op);
-}
-
-void putList(Writer& w, const ListRegs& l) {
-    w.u32v(l.pc);
-    w.u32v(l.stall);
-    for (const auto& e : l.callStack) w.u32v(e[0]), w.u32v(e[1]);
-    w.u32v(l.callDepth);
-    w.b(l.bflg);
-    w.u32v(u32(l.signalStack.size()));
-    for (const auto& f : l.signalStack) w.u32v(f.pc), w.u32v(f.offset), w.u32v(f.base);
-    w.u32v(l.signalStackMax);
-    w.b(l.pauseAtFinish);
-    w.b(l.syncAtFinish);
-    w.u32v(l.pauseSignalArg);
-    w.u32v(l.pauseEndArg);
-    w.u32v(l.lastOp);
-    w.u32v(l.lastWord);
+    for (size_t op = 0; op < s.regs.size(); ++op) a.require(s.regs[op] == 0 || (s.regs[op] >> 24) == op);
 }
 
 // The sceGe module keeps at most 255 SIGNAL CALL levels (SceGeListArgs numStacks < 256).
 constexpr u32 kMaxSignalStack = 256;
 
-void getList(Reader& r, ListRegs& l) {
-    l.pc = r.u32v();
-    l.stall = r.u32v();
-    for (auto& e : l.callStack) e[0] = r.u32v(), e[1] = r.u32v();
-    l.callDepth = r.u32v();
-    r.failIf(l.callDepth > 2);  // the GE's two CALL levels (docs/ge-rules.md §4.1)
-    l.bflg = r.b();
-    const u32 n = r.u32v();
-    r.failIf(n > kMaxSignalStack);
-    l.signalStack.clear();
-    for (u32 i = 0; r.ok() && i < n; ++i) {
-        ListRegs::SigFrame f{};
-        f.pc = r.u32v(), f.offset = r.u32v(), f.base = r.u32v();
-        l.signalStack.push_back(f);
-    }
-    l.signalStackMax = r.u32v();
-    r.failIf(l.signalStackMax > kMaxSignalStack);
-    l.pauseAtFinish = r.b();
-    l.syncAtFinish = r.b();
-    l.pauseSignalArg = r.u32v();
-    l.pauseEndArg = r.u32v();
-    l.lastOp = r.u32v();
-    l.lastWord = r.u32v();
+void serialise(Archive& a, ListRegs& l) {
+    a.u32v(l.pc);
+    a.u32v(l.stall);
+    for (auto& e : l.callStack) a.u32v(e[0]), a.u32v(e[1]);
+    a.u32v(l.callDepth);
+    a.require(l.callDepth <= 2);  // the GE's two CALL levels (docs/ge-rules.md §4.1)
+    a.b(l.bflg);
+    u32 n = u32(l.signalStack.size());
+    a.u32v(n);
+    a.require(n <= kMaxSignalStack);
+    a.resize(l.signalStack, n);
+    for (auto& f : l.signalStack) a.u32v(f.pc), a.u32v(f.offset), a.u32v(f.base);
+    a.u32v(l.signalStackMax);
+    a.require(l.signalStackMax <= kMaxSignalStack);
+    a.b(l.pauseAtFinish), a.b(l.syncAtFinish);
+    for (u32* v : {&l.pauseSignalArg, &l.pauseEndArg, &l.lastOp, &l.lastWord}) a.u32v(*v);
 }
 
-void putStats(Writer& w, const GeStats& s) {
-    for (u64 v : {s.commands, s.prims, s.patches, s.immediates, s.vertices, s.bboxes, s.transfers, s.clutLoads,
-                  s.signals, s.finishes, s.unknownCommands, s.stateChanges, s.cycles, s.cyclesCommands, s.cyclesVertices,
-                  s.cyclesPixels, s.cyclesTransfers})
-        w.u64v(v);
-}
-
-void getStats(Reader& r, GeStats& s) {
+void serialise(Archive& a, GeStats& s) {
     for (u64* v : {&s.commands, &s.prims, &s.patches, &s.immediates, &s.vertices, &s.bboxes, &s.transfers,
                    &s.clutLoads, &s.signals, &s.finishes, &s.unknownCommands, &s.stateChanges, &s.cycles,
                    &s.cyclesCommands, &s.cyclesVertices, &s.cyclesPixels, &s.cyclesTransfers})
-        *v = r.u64v();
+        a.u64v(*v);
 }
 
 // The engine collects at most 0x10000 immediate-mode vertices (GeEngine::doImmediate).
 constexpr u32 kMaxImmVertices = 0x10000;
 
-void putEngine(Writer& w, const GeEngine::Saved& e) {
-    putState(w, e.state);
-    putList(w, e.list);
-    putStats(w, e.stats);
-    w.u8v(u8(e.status));
-    w.u8v(u8(e.lastError));
-    w.str(e.lastErrorMsg);
-    w.u64v(e.cycleLimit);
-    w.b(e.pauseRequested);
-    w.b(e.stopRequested);
-    w.u8v(u8(e.stopStatus));
-    w.u8v(u8(e.lastPrim));
-    w.u32v(u32(e.immVerts.size()));
-    for (const ImmVertex& v : e.immVerts) {
-        w.f(v.x), w.f(v.y);
-        w.u32v(v.z);
-        w.f(v.s), w.f(v.t), w.f(v.q);
-        w.bytes(v.color, 4);
-        w.bytes(v.secondary, 3);
-        w.u8v(v.fog);
-    }
-    w.u32v(e.immFlags);
-    w.u8v(u8(e.immPrim));
+void serialise(Archive& a, ImmVertex& v) {
+    a.f(v.x), a.f(v.y);
+    u32 z = v.z;
+    a.u32v(z);
+    a.require(z <= 0xFFFF);
+    v.z = u16(z);
+    a.f(v.s), a.f(v.t), a.f(v.q);
+    a.bytes(v.color, 4);
+    a.bytes(v.secondary, 3);
+    a.u8v(v.fog);
 }
 
-void getEngine(Reader& r, GeEngine::Saved& e, u32 version) {
-    getState(r, e.state, version);
-    getList(r, e.list);
-    getStats(r, e.stats);
-    e.status = r.en(RunStatus::Error);
-    e.lastError = r.en(GeError::SignalStack);
-    e.lastErrorMsg = r.str(4096);
-    e.cycleLimit = r.u64v();
-    e.pauseRequested = r.b();
-    e.stopRequested = r.b();
-    e.stopStatus = r.en(RunStatus::Error);
-    e.lastPrim = r.en(GE_PRIM_RECTANGLES);
-    const u32 n = r.u32v();
-    r.failIf(n > kMaxImmVertices || size_t(n) * 32 > r.left());
-    e.immVerts.clear();
-    for (u32 i = 0; r.ok() && i < n; ++i) {
-        ImmVertex v;
-        v.x = r.f(), v.y = r.f();
-        const u32 z = r.u32v();
-        r.failIf(z > 0xFFFF);
-        v.z = u16(z);
-        v.s = r.f(), v.t = r.f(), v.q = r.f();
-        r.bytesTo(v.color, 4);
-        r.bytesTo(v.secondary, 3);
-        v.fog = r.u8v();
-        e.immVerts.push_back(v);
-    }
-    e.immFlags = r.u32v();
-    e.immPrim = r.en(GE_PRIM_KEEP_PREVIOUS);
+void serialise(Archive& a, GeEngine::Saved& e) {
+    serialise(a, e.state);
+    serialise(a, e.list);
+    serialise(a, e.stats);
+    a.en(e.status, RunStatus::Error);
+    a.en(e.lastError, GeError::SignalStack);
+    a.str(e.lastErrorMsg, 4096);
+    a.u64v(e.cycleLimit);
+    a.b(e.pauseRequested);
+    a.b(e.stopRequested);
+    a.en(e.stopStatus, RunStatus::Error);
+    a.en(e.lastPrim, GE_PRIM_RECTANGLES);
+    u32 n = u32(e.immVerts.size());
+    a.u32v(n);
+    a.require(n <= kMaxImmVertices && size_t(n) * 32 <= a.left());  // 32 bytes a vertex
+    a.resize(e.immVerts, n);
+    for (ImmVertex& v : e.immVerts) serialise(a, v);
+    a.u32v(e.immFlags);
+    a.en(e.immPrim, GE_PRIM_KEEP_PREVIOUS);
 }
 
 // ---- the sceGe layer -----------------------------------------------------------------------
 
-void putSlots(Writer& w, const std::deque<int>& d) {
-    w.u32v(u32(d.size()));
-    for (int i : d) w.u32v(u32(i));
-}
-
-void getSlots(Reader& r, std::deque<int>& d) {
-    const u32 n = r.u32v();
-    r.failIf(n > u32(SceGe::kMaxLists));
-    d.clear();
-    for (u32 i = 0; r.ok() && i < n; ++i) d.push_back(int(r.u32v()));
-}
-
-void putSce(Writer& w, const SceGe::Saved& s, u32 edramTranslation) {
-    for (const auto& dl : s.lists) {
-        w.u8v(u8(dl.state));
-        w.u32v(dl.startPc);
-        w.u32v(dl.stall);
-        w.s32v(dl.cbid);
-        w.u32v(dl.contextAddr);
-        w.u32v(dl.numStacks);
-        w.u32v(dl.stackAddr);
-        w.b(dl.started);
-        w.b(dl.hung);
-        putList(w, dl.regs);
-        w.u32v(dl.offset);
-        w.u32v(dl.base);
-        w.u64v(dl.cycles);
+void serialise(Archive& a, std::deque<int>& d) {
+    u32 n = u32(d.size());
+    a.u32v(n);
+    a.require(n <= u32(SceGe::kMaxLists));
+    a.resize(d, n);
+    for (int& i : d) {
+        u32 v = u32(i);
+        a.u32v(v);
+        i = int(v);
     }
-    for (const auto& cb : s.callbacks) {
-        w.b(cb.used);
-        for (u32 v : {cb.signalFunc, cb.signalArg, cb.finishFunc, cb.finishArg}) w.u32v(v);
-    }
-    putSlots(w, s.queue);
-    putSlots(w, s.freeSlots);
-    w.s32v(s.active);
-    w.b(s.brokeInCallback);
-    w.b(s.finishPending);
-    w.u32v(s.finishArg);
-    w.u32v(s.finishPc);
-    w.u32v(s.sdkVersion);
-    w.u32v(edramTranslation);
 }
 
-void getSce(Reader& r, SceGe::Saved& s, u32& edramTranslation) {
+void serialise(Archive& a, SceGe::Saved& s, u32& edramTranslation) {
     for (auto& dl : s.lists) {
-        dl.state = r.en(SceListState::Completed);
-        dl.startPc = r.u32v();
-        dl.stall = r.u32v();
-        dl.cbid = r.s32v();
-        dl.contextAddr = r.u32v();
-        dl.numStacks = r.u32v();
-        dl.stackAddr = r.u32v();
-        dl.started = r.b();
-        dl.hung = r.b();
-        getList(r, dl.regs);
-        dl.offset = r.u32v();
-        dl.base = r.u32v();
-        dl.cycles = r.u64v();
+        a.en(dl.state, SceListState::Completed);
+        a.u32v(dl.startPc), a.u32v(dl.stall);
+        a.s32v(dl.cbid);
+        for (u32* v : {&dl.contextAddr, &dl.numStacks, &dl.stackAddr}) a.u32v(*v);
+        a.b(dl.started), a.b(dl.hung);
+        serialise(a, dl.regs);
+        a.u32v(dl.offset), a.u32v(dl.base);
+        a.u64v(dl.cycles);
     }
     for (auto& cb : s.callbacks) {
-        cb.used = r.b();
-        for (u32* v : {&cb.signalFunc, &cb.signalArg, &cb.finishFunc, &cb.finishArg}) *v = r.u32v();
+        a.b(cb.used);
+        for (u32* v : {&cb.signalFunc, &cb.signalArg, &cb.finishFunc, &cb.finishArg}) a.u32v(*v);
     }
-    getSlots(r, s.queue);
-    getSlots(r, s.freeSlots);
-    s.active = r.s32v();
-    s.brokeInCallback = r.b();
-    s.finishPending = r.b();
-    s.finishArg = r.u32v();
-    s.finishPc = r.u32v();
-    s.sdkVersion = r.u32v();
-    edramTranslation = r.u32v();
+    serialise(a, s.queue);
+    serialise(a, s.freeSlots);
+    a.s32v(s.active);
+    a.b(s.brokeInCallback), a.b(s.finishPending);
+    for (u32* v : {&s.finishArg, &s.finishPc, &s.sdkVersion, &edramTranslation}) a.u32v(*v);
+}
+
+void serialise(Archive& a, HostFlags& h) { a.b(h.heldInterrupt); }
+
+// Version 3's GEV3 section: the read-back matrix words (24 bits), which lists a signal paused,
+// the old-SDK suspended list.
+void serialiseV3(Archive& a, GeState& st, SceGe::Saved& s) {
+    for (u32& v : st.visibleMtx) {
+        a.u32v(v);
+        if (a.reading()) v &= 0xFFFFFF;
+    }
+    for (auto& dl : s.lists) a.b(dl.pausedBySignal);
+    a.s32v(s.suspendedSlot);
 }
 
 // ---- guest memory --------------------------------------------------------------------------
@@ -438,16 +402,17 @@ bool readHeader(std::span<const u8> blob, u32& version, u32& flags, std::span<co
 }  // namespace
 
 std::vector<u8> save(const GeEngine& engine, const SceGe& sce, const Memory* mem, const HostFlags& host) {
+    // Copies: the serialise functions take their values by reference in both directions.
+    GeEngine::Saved e = engine.saved();
+    SceGe::Saved s = sce.saved();
+    u32 edram = engine.memory().edramTranslation();
+    HostFlags hf = host;
     Writer w;
-    w.section(kEngine, [&] { putEngine(w, engine.saved()); });
-    w.section(kSce, [&] { putSce(w, sce.saved(), engine.memory().edramTranslation()); });
-    w.section(kHost, [&] { w.b(host.heldInterrupt); });
-    w.section(kV3, [&] {
-        for (u32 v : engine.state().visibleMtx) w.u32v(v);
-        const SceGe::Saved s = sce.saved();
-        for (const auto& dl : s.lists) w.b(dl.pausedBySignal);
-        w.s32v(s.suspendedSlot);
-    });
+    Archive a(w);
+    w.section(kEngine, [&] { serialise(a, e); });
+    w.section(kSce, [&] { serialise(a, s, edram); });
+    w.section(kHost, [&] { serialise(a, hf); });
+    w.section(kV3, [&] { serialiseV3(a, e.state, s); });
     if (mem) {
         w.section(kRam, [&] { putCompressed(w, mem->ram(), mem->ramSize()); });
         w.section(kVram, [&] { putCompressed(w, mem->vram(), Memory::kVramSize); });
@@ -491,10 +456,8 @@ bool load(std::span<const u8> blob, GeEngine& engine, SceGe& sce, Memory& mem, H
         const u8* body = peek.bytes(n);
         if (!peek.ok()) return false;
         top = peek;
-        Reader r(body, n);
-        for (u32& v : e.state.visibleMtx) v = r.u32v() & 0xFFFFFF;
-        for (auto& dl : s.lists) dl.pausedBySignal = r.b();
-        s.suspendedSlot = r.s32v();
+        Archive r(body, n, version);
+        serialiseV3(r, e.state, s);
         return r.ok() && r.atEnd();
     };
     for (size_t k = 0; k < sections; ++k) {
@@ -508,10 +471,10 @@ bool load(std::span<const u8> blob, GeEngine& engine, SceGe& sce, Memory& mem, H
             err = "save state section " + std::to_string(k) + " is missing or out of order";
             return false;
         }
-        Reader r(body, n);
-        if (t == kEngine) getEngine(r, e, version);
-        else if (t == kSce) getSce(r, s, edram);
-        else if (t == kHost) hf.heldInterrupt = r.b();
+        Archive r(body, n, version);
+        if (t == kEngine) serialise(r, e);
+        else if (t == kSce) serialise(r, s, edram);
+        else if (t == kHost) serialise(r, hf);
         else {
             std::vector<u8>& dst = t == kRam ? ram : t == kVram ? vram : scratch;
             const size_t expect = t == kRam ? mem.ramSize() : t == kVram ? Memory::kVramSize : Memory::kScratchSize;

@@ -49,17 +49,7 @@ SceGe::~SceGe() { engine_.setListener(nullptr); }
 
 SceGe::Saved SceGe::saved() const {
     Saved s;
-    s.lists = lists_;
-    s.callbacks = callbacks_;
-    s.queue = queue_;
-    s.freeSlots = freeSlots_;
-    s.active = active_;
-    s.brokeInCallback = brokeInCallback_;
-    s.finishPending = finishPending_;
-    s.finishArg = finishArg_;
-    s.finishPc = finishPc_;
-    s.sdkVersion = sdkVersion_;
-    s.suspendedSlot = suspendedSlot_;
+    Saved::fields(s) = savedFields(*this);
     return s;
 }
 
@@ -82,17 +72,7 @@ bool SceGe::validSaved(const Saved& s, std::string& why) {
 }
 
 void SceGe::restore(const Saved& s) {
-    lists_ = s.lists;
-    callbacks_ = s.callbacks;
-    queue_ = s.queue;
-    freeSlots_ = s.freeSlots;
-    active_ = s.active;
-    brokeInCallback_ = s.brokeInCallback;
-    finishPending_ = s.finishPending;
-    finishArg_ = s.finishArg;
-    finishPc_ = s.finishPc;
-    sdkVersion_ = s.sdkVersion;
-    suspendedSlot_ = s.suspendedSlot;
+    savedFields(*this) = Saved::fields(s);
     inRun_ = yield_ = inEngine_ = false;
     message_.clear();
 }

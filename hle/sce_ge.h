@@ -19,6 +19,7 @@
 #include <array>
 #include <deque>
 #include <string>
+#include <tuple>
 
 #include "hle/ge_engine.h"
 
@@ -227,6 +228,13 @@ public:
         u32 finishArg = 0, finishPc = 0;
         u32 sdkVersion = kDefaultSdkVersion;  // the game's; the host's wait budget is not state
         int suspendedSlot = -1;
+        // The fields in order (of a Saved or a const one): saved() and restore() copy them to and
+        // from the layer's members (savedFields()) as one tuple each way.
+        template <class S>
+        static auto fields(S& s) {
+            return std::tie(s.lists, s.callbacks, s.queue, s.freeSlots, s.active, s.brokeInCallback, s.finishPending,
+                            s.finishArg, s.finishPc, s.sdkVersion, s.suspendedSlot);
+        }
     };
     Saved saved() const;
     // Checks the queue and slot structure (false with `why` when it is not one SceGe could reach)
@@ -236,6 +244,12 @@ public:
     bool inRun() const { return inRun_; }
 
 private:
+    // The members Saved keeps, in Saved::fields() order (for the layer itself or a const one).
+    template <class Self>
+    static auto savedFields(Self& g) {
+        return std::tie(g.lists_, g.callbacks_, g.queue_, g.freeSlots_, g.active_, g.brokeInCallback_, g.finishPending_,
+                        g.finishArg_, g.finishPc_, g.sdkVersion_, g.suspendedSlot_);
+    }
 
     // GeListener
     void onSignal(u32 behaviour, u32 signalArg, u32 endArg, u32 pc) override;

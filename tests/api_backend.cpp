@@ -9,9 +9,9 @@
 #include <string>
 #include <thread>
 
+#include "authoring/list_builder.h"
 #include "ge2gl/ge2gl.hpp"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
 #include "tests/api_host.h"
 

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "authoring/list_builder.h"
 #include "ge2gl/ge2gl.h"
-#include "hle/list_builder.h"
 #include "hle/memory.h"
 
 namespace apitest {

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "authoring/list_builder.h"
 #include "ge2gl/ge2gl.h"
-#include "hle/list_builder.h"
 #include "hle/memory.h"
 #include "tests/api_embed_host.h"
 #include "tests/api_gl_host.h"

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "authoring/list_builder.h"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 #include "hle/memory.h"
 #include "translator/gl_renderer.h"
 

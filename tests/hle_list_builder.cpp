@@ -10,11 +10,12 @@
 #include <filesystem>
 #include <set>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 
 using namespace ge;
 namespace fs = std::filesystem;

@@ -6,10 +6,10 @@
 
 #include <cstring>
 
+#include "authoring/list_builder.h"
 #include "hle/dump/dump_writer.h"
 #include "hle/dump/player.h"
 #include "hle/ge_time.h"
-#include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
 #include "tests/hostile_dumps.h"
 

@@ -9,9 +9,9 @@
 
 #include <cstring>
 
+#include "authoring/list_builder.h"
 #include "hle/dump/player.h"
 #include "hle/dump/replay_memory.h"
-#include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
 
 using namespace ge;

@@ -5,8 +5,8 @@
 // commands at that tick.
 #include <gtest/gtest.h>
 
+#include "authoring/list_builder.h"
 #include "hle/ge_time.h"
-#include "hle/list_builder.h"
 #include "hle/sce_ge.h"
 
 using namespace ge;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "authoring/list_builder.h"
 #include "hle/dump/dump_writer.h"
-#include "hle/list_builder.h"
 
 namespace ge::hostile {
 

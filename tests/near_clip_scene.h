@@ -11,7 +11,7 @@
 // (360, 204). Clipped: the quadrilateral A B B' A' (rows 28–203). Unclipped, C would project to
 // (240, 380.8) and the triangle would cover rows 204 and below instead.
 #pragma once
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 #include "tests/screen_frame.h"
 
 namespace ge::testscene {

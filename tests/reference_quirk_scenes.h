@@ -4,7 +4,7 @@
 #pragma once
 #include <vector>
 
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 
 namespace ge::testscene {
 

@@ -4,7 +4,7 @@
 // clip (−1..1, 1..−1) onto those pixels, and sceGuDepthRange(65535, 0). Shared by
 // tests/near_clip_scene.h and tests/sprite_position_scene.h.
 #pragma once
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 
 namespace ge::testscene {
 

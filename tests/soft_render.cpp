@@ -10,10 +10,11 @@
 #include <random>
 #include <vector>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
 #include "hle/dump/player.h"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 #include "softmodel/soft_renderer.h"
 #include "tests/near_clip_scene.h"
 #include "tests/reference_quirk_scenes.h"

@@ -7,9 +7,9 @@
 #include <cmath>
 #include <numeric>
 
+#include "authoring/list_builder.h"
 #include "geometry/texture_size.h"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 #include "soft_pixel_fixture.h"
 #include "softmodel/sampler.h"
 #include "softmodel/soft_renderer.h"

@@ -16,7 +16,7 @@
 
 #include <gtest/gtest.h>
 
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 #include "tests/screen_frame.h"
 
 namespace ge::testscene {

@@ -15,8 +15,9 @@
 #include <regex>
 #include <sstream>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
-#include "hle/list_builder.h"
 #include "tools/lib/batch.h"
 #include "tools/lib/draw_select.h"
 #include "tools/lib/image.h"

@@ -16,9 +16,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
 #include "hle/dump/player.h"
-#include "hle/list_builder.h"
 #include "tools/lib/draw_hook.h"
 #include "tools/lib/json_io.h"
 #include "tools/lib/render.h"

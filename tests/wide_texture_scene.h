@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 
 namespace ge::testscene {
 

@@ -14,9 +14,10 @@
 #include <cstring>
 #include <string>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
 #include "hle/ge_engine.h"
-#include "hle/list_builder.h"
 #include "tools/scenes/scene_kit.h"
 #include "tools/scenes/scenes.h"
 

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 // FrameRecorder: see recorder.h, docs/recording.md and docs/ppdmp.md §3–§7. The structure
-// follows PPSSPP's GPU/Debugger/Record.cpp (NotifyCommand, FlushPrimState, EmitTextureData,
-// EmitClut, EmitTransfer, NotifyMemcpy/NotifyMemset, GetTargetFlags, DirtyDrawnVRAM,
-// CheckEdramTrans); the code is our own.
+// follows PPSSPP's GPU/Debugger/Record.cpp (NotifyCommand, CheckEdramTrans; the record rules are
+// in record_builder.cpp); the code is our own.
 #include "hle/dump/recorder.h"
 
-#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -13,29 +11,8 @@ namespace ge::dump {
 
 namespace {
 
-// Bits per texel of a texture format (docs/ge-rules.md §6.1; PPSSPP textureBitsPerPixel).
-u32 texelBits(u32 fmt) {
-    static constexpr u8 bits[16] = {16, 16, 16, 32, 4, 8, 16, 32, 4, 8, 8, 0, 0, 0, 0, 0};
-    return bits[fmt & 15];
-}
-
-// Byte offset inside the 2 MiB of VRAM, mirrors folded (Record.cpp masks with 0x1FFFFF too).
-u32 vramOffset(u32 addr) { return Memory::normalize(addr) & (Memory::kVramSize - 1); }
-
 bool isMatrixOp(int op) {
     return op == GE_CMD_BONEN || op == GE_CMD_BONED || (op >= GE_CMD_WORLDN && op <= GE_CMD_TGEND);
-}
-
-// Opcodes a REGISTERS block must not hold (ppdmp.md §7 rule 4): a player replaces them by
-// its own (pointers from data records) or they steer the list.
-bool notRecorded(u32 op) {
-    switch (op) {
-    case GE_CMD_VADR: case GE_CMD_IADR: case GE_CMD_BASE: case GE_CMD_OFFSET: case GE_CMD_ORIGIN:
-    case GE_CMD_JUMP: case GE_CMD_BJUMP: case GE_CMD_CALL: case GE_CMD_RET:
-    case GE_CMD_END: case GE_CMD_SIGNAL: case GE_CMD_FINISH: case GE_CMD_BBOX:
-        return true;
-    default: return false;
-    }
 }
 
 }  // namespace
@@ -72,14 +49,14 @@ private:
     Renderer& in_;
 };
 
-FrameRecorder::FrameRecorder(GeEngine& engine, std::string gameId) : eng_(engine), out_(std::move(gameId)) {}
+FrameRecorder::FrameRecorder(GeEngine& engine, std::string gameId)
+    : eng_(engine), out_(std::move(gameId)), rec_(out_, engine.memory(), {}) {
+    // A backend drawing on the GPU holds render targets' newest pixels: bring them to VRAM.
+    rec_.setVramReadHook([this](u32 addr, u32 size) { eng_.renderer()->syncMemoryForRead(addr, size); });
+}
 
 // Never touches the engine (recorder.h): the owner detaches first, or the engine is gone.
 FrameRecorder::~FrameRecorder() = default;
-
-void FrameRecorder::warn(const std::string& w) {
-    if (warnings_.size() < 32) warnings_.push_back(w);
-}
 
 void FrameRecorder::begin() {
     if (attached_) return;
@@ -90,13 +67,9 @@ void FrameRecorder::begin() {
     st.saveContext(ctx);
     out_.init(ctx);
     out_.clut(st.clut, sizeof st.clut);
-    clutRegsReplaced_ = true;
+    rec_.initialClutWritten();
     out_.display(st.framebufAddr(), st.framebufStride(), st.framebufFormat());
-    // Nothing of VRAM is known to the dump yet (DirtyAllVRAM(DIRTY)); a player's VRAM starts as
-    // zeros (ppdmp.md §6.4), which is what the shadow copy says.
-    vram_.assign(Memory::kVramSize >> kBlockShift, Vram::Dirty);
-    shadow_.assign(Memory::kVramSize, 0);
-    targets_.clear();
+    rec_.reset();
     lastEdram_ = 0x400;  // the boot value PPSSPP's recorder assumes
     checkEdram();
     before_ = st;
@@ -119,7 +92,7 @@ void FrameRecorder::detach() {
 void FrameRecorder::display(u32 addr, u32 stride, u32 format) {
     if (!attached_) return;
     checkEdram();
-    flushBlock();
+    rec_.flushBlock();
     out_.display(addr, stride, format & 0xFF);
     haveHostDisplay_ = true;
     dispAddr_ = addr, dispStride_ = stride, dispFormat_ = format & 0xFF;
@@ -128,7 +101,7 @@ void FrameRecorder::display(u32 addr, u32 stride, u32 format) {
 void FrameRecorder::end() {
     if (!attached_) return;
     checkEdram();
-    flushBlock();
+    rec_.flushBlock();
     // ppdmp.md §7 rule 3: DISPLAY is the very last record. A DISPLAY the host just gave is that record.
     const std::vector<Record>& recs = out_.dump().records;
     const bool lastIsHostDisplay = haveHostDisplay_ && !recs.empty() && recs.back().type == DISPLAY;
@@ -143,17 +116,11 @@ void FrameRecorder::end() {
     detach();
 }
 
-void FrameRecorder::flushBlock() {
-    if (block_.empty()) return;
-    out_.registers(block_);
-    block_.clear();
-}
-
 // Record.cpp CheckEdramTrans: an EDRAMTRANS record whenever the value changed.
 void FrameRecorder::checkEdram() {
     const u32 v = eng_.memory().edramTranslation();
     if (v == lastEdram_) return;
-    flushBlock();
+    rec_.flushBlock();
     out_.edramTrans(v);
     lastEdram_ = v;
 }
@@ -179,14 +146,14 @@ void FrameRecorder::checkExternalChanges() {
                   s.tgenNum != before_.tgenNum;
     }
     if (lastOp_ != GE_CMD_CLOAD && std::memcmp(s.clut, before_.clut, sizeof s.clut) != 0)
-        warn("palette RAM changed outside the display list (a context or state load): not in the dump");
+        rec_.warn("palette RAM changed outside the display list (a context or state load): not in the dump");
     if (!changed) return;
     u32 ctx[512];
     s.saveContext(ctx);
     for (int i = 17; i < 384; ++i) {
         const u32 op = ctx[i] >> 24;
-        if (op == GE_CMD_NOP || notRecorded(op)) continue;
-        block_.push_back(ctx[i]);
+        if (op == GE_CMD_NOP || RecordBuilder::notRecorded(op)) continue;
+        rec_.stateWord(ctx[i]);
     }
 }
 
@@ -213,221 +180,21 @@ void FrameRecorder::record(u32 pc, u32 word) {
     lastCount_ = count;
     lastPc_ = pc;
     const u32 op = word >> 24;
+    const GeState& st = eng_.state();
     switch (op) {
-    case GE_CMD_PRIM: emitDraw(word, word & 0xFFFF); break;
+    case GE_CMD_PRIM: rec_.draw(st, word, word & 0xFFFF); break;
     // Patches read Ucount × Vcount control points (Record.cpp EmitBezierSpline).
     case GE_CMD_BEZIER:
-    case GE_CMD_SPLINE: emitDraw(word, (word & 0xFF) * ((word >> 8) & 0xFF)); break;
-    case GE_CMD_CLOAD: emitClut(word); break;
-    case GE_CMD_XSTART: emitTransfer(word); break;
-    default:
-        // Everything else (NOPs and unknown opcodes included, as PPSSPP) except what the player
-        // replaces or what steers the list; BBOX/BJUMP: the path taken is what gets recorded.
-        if (!notRecorded(op)) block_.push_back(word);
-        break;
+    case GE_CMD_SPLINE: rec_.draw(st, word, (word & 0xFF) * ((word >> 8) & 0xFF)); break;
+    case GE_CMD_CLOAD: rec_.clut(st, word); break;
+    case GE_CMD_XSTART: rec_.transfer(st, word); break;
+    default: rec_.command(word); break;
     }
     before_ = eng_.state();
     lastOp_ = int(op);
 }
 
-const u8* FrameRecorder::readGuest(u32 addr, u32 size) {
-    if (!size) return nullptr;
-    // A backend drawing on the GPU holds render targets' newest pixels: bring them to VRAM.
-    if (Memory::isVram(addr)) eng_.renderer()->syncMemoryForRead(addr, size);
-    return eng_.memory().ptr(addr, size);
-}
-
-// Record.cpp FlushPrimState + EmitPrim: texture levels, INDICES, VERTICES, then the kick word.
-void FrameRecorder::emitDraw(u32 word, u32 count) {
-    const GeState& st = eng_.state();
-    // lastRenderTargets: colour and depth buffer of every draw (flag bit 0 of ppdmp.md §3.3).
-    targets_.insert(vramOffset(st.framebufAddr()));
-    targets_.insert(vramOffset(st.depthbufAddr()));
-
-    // Every level with an address, when texturing or antialiasing is on or the vertices carry
-    // texture coordinates (PPSSPP plays it safe the same way; ppdmp.md §3.2).
-    const bool texturing = st.TME_on() || st.AAE_on();
-    const bool texCoords = st.VTYPE_tc() != 0;
-    if (texturing || texCoords) {
-        for (int level = 0; level < 8; ++level)
-            if (const u32 addr = st.textureAddr(level)) emitTexture(level, addr);
-    }
-
-    if (count > 0) {
-        Memory& mem = eng_.memory();
-        const u32 stride = st.vertexStride();
-        u64 vertexCount = count;
-        if (const u32 isz = st.indexSize()) {
-            // ppdmp.md §3.2: indexed draws carry (maxIndex + 1) vertices so the index values stay valid.
-            const u32 want = count * isz;
-            const u32 n = mem.validSize(st.indexAddr, want);
-            const u8* p = readGuest(st.indexAddr, n);
-            if (n < want) warn("a draw reads indices outside guest memory");
-            u32 maxIndex = 0;
-            for (u32 i = 0; p && i + isz <= n; i += isz)
-                maxIndex = std::max(maxIndex, isz == 1 ? u32(p[i]) : isz == 2 ? u32(readLE16(p + i)) : readLE32(p + i));
-            if (n) {
-                flushBlock();
-                out_.indices(p, n);
-            }
-            vertexCount = u64(maxIndex) + 1;
-        }
-        const u64 want = std::min<u64>(vertexCount * stride, 0x7FFFFFFF);
-        const u32 n = mem.validSize(st.vertexAddr, u32(want));
-        if (n < want) warn("a draw reads vertices outside guest memory");
-        if (n) {
-            const u8* p = readGuest(st.vertexAddr, n);
-            flushBlock();
-            out_.vertices(p, n);
-        }
-    }
-    block_.push_back(word);
-    markDrawn();
-    ++draws_;
-}
-
-// Record.cpp EmitTextureData: `bpp·(bufw·h + max(0, w − bufw))/8` bytes of level n (ppdmp.md §3.2), cut at
-// the end of valid memory. VRAM levels become FRAMEBUFn with the address, the TBW width (players
-// turn it into the TBWn word, ppdmp.md §6.2) and the ppdmp.md §3.3 flags, and always carry their bytes.
-void FrameRecorder::emitTexture(int level, u32 addr) {
-    const GeState& st = eng_.state();
-    const u32 bits = texelBits(st.TPF_format());
-    if (!bits) {
-        warn("texturing with an invalid texture format");
-        return;
-    }
-    const u32 w = st.textureWidth(level), h = st.textureHeight(level), bufw = st.textureBufWidth(level);
-    const u64 texels = u64(bufw) * h + (w > bufw ? w - bufw : 0);
-    const u32 want = u32(std::min<u64>(texels * bits / 8, 0x7FFFFFFF));
-    const u32 n = eng_.memory().validSize(addr, want);
-    if (Memory::isVram(addr)) {
-        const u8* p = readGuest(addr, n);
-        const u32 flags = targetFlags(addr, n);
-        flushBlock();
-        out_.framebufTexture(level, addr, st.TBW_width(level), flags, p, n);
-        if (!(flags & 2)) updateShadow(addr, n);
-    } else if (n) {
-        if (n < want) warn("a texture level reaches past the end of guest memory");
-        const u8* p = readGuest(addr, n);
-        flushBlock();
-        out_.texture(level, p, n);
-    }
-}
-
-// Record.cpp EmitClut: NP × 32 bytes (NP = 64 for 0x40), CLUTADDR first when in VRAM.
-void FrameRecorder::emitClut(u32 word) {
-    const GeState& st = eng_.state();
-    const u32 addr = st.clutAddr();
-    const u32 blocks = (word & 0x7F) == 0x40 ? 0x40 : (word & 0x3F);
-    const u32 n = eng_.memory().validSize(addr, blocks * 32);
-    if (n) {
-        const u8* p = readGuest(addr, n);
-        if (Memory::isVram(addr)) {
-            // The player leaves CBP/CBW as recorded for a VRAM palette (ppdmp.md §6.2): put them back if
-            // the initial CLUT record made the player point them elsewhere.
-            if (clutRegsReplaced_) {
-                block_.push_back(st.regs[GE_CMD_CBP]);
-                block_.push_back(st.regs[GE_CMD_CBW]);
-                clutRegsReplaced_ = false;
-            }
-            const u32 flags = targetFlags(addr, n);
-            flushBlock();
-            out_.clutAddr(addr, flags);
-            if (!(flags & 2)) updateShadow(addr, n);
-        }
-        flushBlock();
-        out_.clut(p, n);
-    }
-    block_.push_back(word);
-}
-
-// Record.cpp EmitTransfer: only transfers into VRAM (the XSTART word of others is dropped too);
-// the source from its base up to the last pixel used (ppdmp.md §3.2).
-void FrameRecorder::emitTransfer(u32 word) {
-    const GeState& st = eng_.state();
-    flushBlock();
-    const u32 dst = st.transferDstAddr();
-    if (!Memory::isVram(dst)) return;
-    const u32 bpp = (word & 1) ? 4 : 2;  // this XSTART's pixel size, not the previous one's
-    const u32 w = st.XSIZE_w1() + 1, h = st.XSIZE_h1() + 1;
-    const u32 src = st.transferSrcAddr();
-    const u64 srcWant = (u64(st.XPOS1_y() + h - 1) * st.transferSrcStride() + st.XPOS1_x() + w) * bpp;
-    const u64 dstWant = (u64(st.XPOS2_y() + h - 1) * st.transferDstStride() + st.XPOS2_x() + w) * bpp;
-    const u32 n = eng_.memory().validSize(src, u32(std::min<u64>(srcWant, 0x7FFFFFFF)));
-    const u32 dn = eng_.memory().validSize(dst, u32(std::min<u64>(dstWant, 0x7FFFFFFF)));
-    if (n) {
-        out_.transferSrc(readGuest(src, n), n);
-        markVram(dst, dn, Vram::Dirty, false);
-    }
-    block_.push_back(word);
-}
-
-// Record.cpp DirtyDrawnVRAM: the rows up to the scissor/region bottom of the colour buffer, and of
-// the depth buffer when the draw writes depth.
-void FrameRecorder::markDrawn() {
-    const GeState& st = eng_.state();
-    const u32 w = std::min(st.SCISSOR2_x(), st.REGION2_x()) + 1;
-    const u32 h = std::min(st.SCISSOR2_y(), st.REGION2_y()) + 1;
-    const bool clear = st.CMODE_on();
-    if ((!clear && !st.ZMSK_nowrite() && st.ZTE_on()) || (clear && st.CMODE_depth())) {
-        const u32 zs = st.depthbufStride();
-        markVram(st.depthbufAddr(), 2 * (zs * h + (w > zs ? w - zs : 0)), Vram::Drawn, false);
-    }
-    const u32 bpp = st.framebufFormat() == GE_FORMAT_8888 ? 4 : 2;
-    const u32 fs = st.framebufStride();
-    markVram(st.framebufAddr(), bpp * (fs * h + (w > fs ? w - fs : 0)), Vram::Drawn, false);
-}
-
-void FrameRecorder::markVram(u32 addr, u32 size, Vram state, bool wholeBlocksOnly) {
-    if (!size || !Memory::isVram(addr)) return;
-    const u32 off = vramOffset(addr);
-    const u32 end = std::min<u64>(u64(off) + size, Memory::kVramSize);
-    const u32 bs = 1u << kBlockShift;
-    u32 first = off >> kBlockShift, last = (end - 1) >> kBlockShift;  // inclusive
-    if (wholeBlocksOnly) {
-        first = (off + bs - 1) >> kBlockShift;
-        if ((end >> kBlockShift) == 0) return;
-        last = (end >> kBlockShift) - 1;
-        if (first > last) return;
-    }
-    for (u32 b = first; b <= last; ++b) vram_[b] = state;
-}
-
-// Record.cpp GetTargetFlags (ppdmp.md §3.3). The host may write VRAM without telling
-// (ge2gl_mem_pointer), so "clean" blocks are always checked against the shadow copy, as PPSSPP
-// does for blocks in its UNKNOWN state after the CPU ran.
-u32 FrameRecorder::targetFlags(u32 addr, u32 size) {
-    const u32 off = vramOffset(addr);
-    const bool target = targets_.count(off) != 0;
-    if (!size || u64(off) + size > Memory::kVramSize) return target ? 1 : 0;
-    bool dirty = false, drawn = false;
-    const u32 first = off >> kBlockShift, last = (off + size - 1) >> kBlockShift;
-    const u32 bs = 1u << kBlockShift;
-    for (u32 b = first; b <= last; ++b) {
-        dirty = dirty || vram_[b] != Vram::Clean;
-        drawn = drawn || vram_[b] == Vram::Drawn;
-        // The bytes go into the dump now: whole blocks not drawn by the GE become known.
-        const bool whole = b * bs >= off && (b + 1) * bs <= off + size;
-        if (vram_[b] == Vram::Dirty && whole) vram_[b] = Vram::Clean;
-    }
-    bool unchanged = false;
-    if (!dirty) {
-        const u8* p = eng_.memory().ptr(addr, size);
-        unchanged = p && std::memcmp(shadow_.data() + off, p, size) == 0;
-    }
-    return (target ? 1 : 0) | (unchanged ? 2 : 0) | (drawn ? 4 : 0);
-}
-
-void FrameRecorder::updateShadow(u32 addr, u32 size) {
-    if (!size || !Memory::isVram(addr)) return;
-    const u32 off = vramOffset(addr);
-    const u32 n = u32(std::min<u64>(size, Memory::kVramSize - off));
-    if (const u8* p = eng_.memory().ptr(addr, n)) std::memcpy(shadow_.data() + off, p, n);
-}
-
-// Record.cpp NotifyMemcpy / NotifyMemset: VRAM destinations only. A write of one repeated byte
-// is a MEMSET (what a memset or ge2gl's player's fill looks like), anything else MEMCPYDATA with
-// the bytes now in memory.
+// Record.cpp NotifyMemcpy / NotifyMemset (RecordBuilder::hostWrite).
 void FrameRecorder::hostWrote(u32 addr, u32 size) {
     if (!attached_ || !failure_.empty()) return;
     try {
@@ -439,17 +206,7 @@ void FrameRecorder::hostWrote(u32 addr, u32 size) {
 
 void FrameRecorder::recordHostWrite(u32 addr, u32 size) {
     checkEdram();
-    if (!size || !Memory::isVram(addr)) return;
-    Memory& mem = eng_.memory();
-    const u32 n = mem.validSize(addr, size);
-    const u8* p = n ? mem.ptr(addr, n) : nullptr;
-    if (!p) return;
-    flushBlock();
-    const bool uniform = std::all_of(p, p + n, [&](u8 b) { return b == p[0]; });
-    if (uniform) out_.memset(addr, p[0], n);
-    else out_.memcpy(addr, p, n);
-    updateShadow(addr, n);
-    markVram(addr, n, Vram::Clean, true);
+    rec_.hostWrite(addr, size);
 }
 
 }  // namespace ge::dump

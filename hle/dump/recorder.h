@@ -5,17 +5,11 @@
 // docs/recording.md lists every record and where it comes from).
 //
 // It is a CommandObserver (hle/ge_engine.h): the engine calls it before every command, with its
-// state and guest memory as they are before that command runs. From them it builds
-//   - REGISTERS: every command word except the ones a player replaces or that only steer the list
-//     (VADR, IADR, BASE, OFFSET, ORIGIN, JUMP, BJUMP, CALL, RET, END, SIGNAL, FINISH, BBOX;
-//     Record.cpp NotifyCommand; ppdmp.md §3.2, §7 rule 4);
-//   - at PRIM/BEZIER/SPLINE (Record.cpp FlushPrimState): the texture levels (TEXTUREn from RAM,
-//     FRAMEBUFn with the ppdmp.md §3.3 flags from VRAM), then INDICES, then VERTICES, sized from VTYPE,
-//     the count and the engine's vertex/index pointers;
-//   - at CLOAD (EmitClut): [CLUTADDR] + CLUT; at XSTART (EmitTransfer): TRANSFERSRC, the kick
-//     dropped for transfers to RAM;
-//   - EDRAMTRANS whenever the eDRAM translation differs from the last value recorded (0x400 at
-//     first, CheckEdramTrans).
+// state and guest memory as they are before that command runs, and it hands them to a
+// RecordBuilder (hle/dump/record_builder.h), which holds the recording rules: REGISTERS blocks, the
+// data records of draws, CLOADs and transfers, and the VRAM knowledge behind the ppdmp.md §3.3
+// flags. The recorder itself adds EDRAMTRANS whenever the eDRAM translation differs from the last
+// value recorded (0x400 at first, Record.cpp CheckEdramTrans).
 // While it records, a Renderer in front of the engine's backend passes every call through and
 // turns the host's memoryWritten() notices (ge2gl_mem_write, ge2gl_mem_written, a save state
 // load) into MEMCPYDEST + MEMCPYDATA, or MEMSET for a run of one byte value (NotifyMemcpy,
@@ -34,11 +28,11 @@
 // first and the recorder with the handle: the engine then holds a dead pointer nobody calls).
 #pragma once
 #include <memory>
-#include <set>
 #include <string>
 #include <vector>
 
 #include "hle/dump/dump_writer.h"
+#include "hle/dump/record_builder.h"
 #include "hle/ge_engine.h"
 
 namespace ge::dump {
@@ -69,8 +63,8 @@ public:
     const Dump& dump() const { return out_.dump(); }
     // Things the dump cannot express (e.g. a palette changed outside the list). Empty for the
     // project's scenes.
-    const std::vector<std::string>& warnings() const { return warnings_; }
-    u64 draws() const { return draws_; }
+    const std::vector<std::string>& warnings() const { return rec_.warnings(); }
+    u64 draws() const { return rec_.draws(); }
     // Non-empty when the recording had to stop (the dump grew past the writer's limits): the dump
     // is then incomplete and must not be written.
     const std::string& failure() const { return failure_; }
@@ -79,48 +73,26 @@ public:
 
 private:
     class HostWriteHook;
-    enum class Vram : u8 { Dirty, Drawn, Clean };
-    static constexpr u32 kBlockShift = 8;  // 256-byte blocks of VRAM for the dirty map
 
     void record(u32 pc, u32 word);
     void recordHostWrite(u32 addr, u32 size);
-    void flushBlock();
     void checkEdram();
     void checkExternalChanges();
-    void emitDraw(u32 word, u32 count);
-    void emitTexture(int level, u32 addr);
-    void emitClut(u32 word);
-    void emitTransfer(u32 word);
-    void markDrawn();
-    void markVram(u32 addr, u32 size, Vram state, bool wholeBlocksOnly);
-    u32 targetFlags(u32 addr, u32 size);
-    void updateShadow(u32 addr, u32 size);
-    // Pointer to `size` readable bytes at addr (after asking the backend for VRAM), or null.
-    const u8* readGuest(u32 addr, u32 size);
-    void warn(const std::string& w);
 
     GeEngine& eng_;
     DumpWriter out_;
+    RecordBuilder rec_;
     std::unique_ptr<HostWriteHook> hook_;
     Renderer* inner_ = nullptr;
     bool attached_ = false;
-    std::vector<u32> block_;
-    std::vector<Vram> vram_;       // per 256-byte block: what the dump knows of it
-    std::vector<u8> shadow_;       // what the dump has written to VRAM so far (Record.cpp lastVRAM)
-    std::set<u32> targets_;        // colour/depth buffer starts used by draws (VRAM offsets)
     u32 lastEdram_ = 0x400;
     // External-change detection: the state before the last command and that command's opcode.
     GeState before_;
     int lastOp_ = -1;
     u64 lastCount_ = ~u64(0);  // stats().commands and pc at the last command seen
     u32 lastPc_ = 0;
-    // The player queues CBW/CBP for the initial CLUT record (ppdmp.md §6.2): the recorded CBP/CBW no
-    // longer hold, so they are written again before the first CLOAD from VRAM.
-    bool clutRegsReplaced_ = false;
     bool haveHostDisplay_ = false;
     u32 dispAddr_ = 0, dispStride_ = 0, dispFormat_ = 0;
-    u64 draws_ = 0;
-    std::vector<std::string> warnings_;
     std::string failure_;
 };
 

@@ -13,8 +13,9 @@
 #include <optional>
 #include <random>
 
+#include "authoring/list_builder.h"
+#include "authoring/scene_recorder.h"
 #include "hle/dump/dump_writer.h"
-#include "hle/list_builder.h"
 #include "hle/memory.h"
 #include "tools/lib/blame.h"
 #include "tools/lib/json_io.h"

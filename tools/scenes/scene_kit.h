@@ -7,7 +7,7 @@
 #include <cstring>
 #include <vector>
 
-#include "hle/list_builder.h"
+#include "authoring/list_builder.h"
 
 namespace ge::scenes {
 
