@@ -28,7 +28,7 @@ bool depthOverlapsColor(const Target& t, u32 depthAddr, u32 depthStride, int row
 // Computes the setup of a draw; flushes the pending batch when it differs. False when the
 // draw cannot produce pixels (empty scissor, unusable buffers).
 bool GlRendererImpl::beginDraw(const GeState& st, const shadergen::DrawFlags& flags) {
-    Setup s;
+    DrawSetup s;
     if (!makeSetup(st, flags, s)) return false;
     if (geo_.empty() || std::memcmp(&s, &batchSetup_, sizeof s) != 0) {
         flush();
@@ -40,7 +40,7 @@ bool GlRendererImpl::beginDraw(const GeState& st, const shadergen::DrawFlags& fl
 
 // The setup of a draw (keys, uniforms, targets, scissor, texture made ready). False when the
 // draw cannot produce pixels.
-bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& flags, Setup& s) {
+bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& flags, DrawSetup& s) {
     std::memset(static_cast<void*>(&s), 0, sizeof s);
     const shadergen::PipelineKeys keys = shadergen::keysFromState(st, flags, caps_, opt_.baseline);
     s.vs = keys.vs;
@@ -85,7 +85,7 @@ bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& fl
         const bool clut = st.textureFormat() >= GE_TFMT_CLUT4 && st.textureFormat() <= GE_TFMT_CLUT32;
         const u64 clutHash = clut ? shadergen::hashBytes(st.clut, sizeof st.clut) : 0;
         const TextureEntry* e = textures_.get(mem_, st, levels, generation_, clutHash);
-        cache_.texture = ~0u;  // the cache may have rebound unit 0
+        state_.textureUnitUsed();  // the cache may have rebound unit 0
         if (!e) {
             flush();
             return false;
@@ -118,7 +118,7 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     if (!gpu_.prepare(mem_, st, p, vs.texture, vs.fog, vs.cull, vs.cullCcw, dstTexture, gpuDraw_)) return false;
     // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
     pipeline_.keepOpenVertices(mem_, st, p);
-    Setup s;
+    DrawSetup s;
     if (!makeSetup(st, flags, s)) {
         flush();
         return true;
@@ -133,14 +133,13 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
     std::string err;
     const Program* prog = programs_.getHw(gpuDraw_.key, s.fs, &err);
-    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false, uniformShadow_.clear();
+    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
     if (!prog) {
         noteError(err);
         return true;
     }
     fb_.bindDraw(ct, dt);
-    if (fb_.clobbers() != seenClobbers_) cache_.valid = false;
-    applyState(s, *prog, 0, 0);
+    state_.apply(s, *prog, 0, 0);
     gpu_.draw(gpuDraw_, *prog);
     ++stats_.glDrawCalls;
     // Without CPU geometry the drawn area is bounded by the scissor.
@@ -153,7 +152,7 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
 }
 
 bool GlRendererImpl::batchOverlaps(u32 begin, u32 end) const {
-    const Setup& s = batchSetup_;
+    const DrawSetup& s = batchSetup_;
     const u32 bpp = s.colorFormat == GE_FORMAT_8888 ? 4 : 2;
     const u32 cEnd = s.colorAddr + u32(s.scissor[3] + 1) * s.colorStride * bpp;
     if (s.colorAddr < end && cEnd > begin) return true;
@@ -166,7 +165,7 @@ bool GlRendererImpl::batchOverlaps(u32 begin, u32 end) const {
 
 void GlRendererImpl::flush() {
     if (geo_.empty()) return;
-    const Setup& s = batchSetup_;
+    const DrawSetup& s = batchSetup_;
     const std::vector<GlVertex>& verts = geo_.tris;
     const std::vector<PrimBounds>& bounds = geo_.triBounds;
     const int perPrim = 3;
@@ -190,21 +189,20 @@ void GlRendererImpl::flush() {
     const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
     std::string err;
     const Program* prog = programs_.get(s.vs, s.fs, &err);
-    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) cache_.valid = false, uniformShadow_.clear();
+    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
     if (!prog) {
         noteError(err);
         geo_.clear();
         return;
     }
     fb_.bindDraw(ct, dt);
-    if (fb_.clobbers() != seenClobbers_) cache_.valid = false;
     const bool dstTex = s.fs.dstRead == shadergen::DstRead::Texture;
     GLuint dstColor = 0, dstDepth = 0;
     if (dstTex) {
         dstColor = useBarrier_ ? ct->tex : snapColor_;
         dstDepth = useBarrier_ ? (dt ? dt->tex : 0) : snapDepth_;
     }
-    applyState(s, *prog, dstColor, dstDepth);
+    state_.apply(s, *prog, dstColor, dstDepth);
 
     gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(GlVertex)), verts.data(), GL_STREAM_DRAW);
     if (caps_.exactInterp) {

@@ -61,6 +61,12 @@ void GlRendererImpl::hostLeave() {
     }
 }
 
+// Drops every assumption about GL bindings (the host or another pass changed them).
+void GlRendererImpl::forgetGlState() {
+    fb_.forgetBindings();
+    state_.forget();
+}
+
 void GlRendererImpl::hostMayHaveWritten(bool frameBuffers) {
     ++generation_;  // cached textures are re-hashed against their bytes when next used
     if (frameBuffers) fb_.markSuspect();
@@ -124,7 +130,7 @@ int GlRendererImpl::readScaledFrame(u32 addr, u32 stride, GeBufferFormat fmt, in
     const int tw = std::min(w, int(t->width())) * n, th = std::min(h, t->rowsValid) * n;
     for (int y = 0; y < th; ++y)
         for (int x = 0; x < tw; ++x) rgba[size_t(y) * W + size_t(x)] = texels[size_t(y) * size_t(tw) + size_t(x)] | 0xFF000000u;
-    cache_.valid = false;
+    state_.invalidate();
     return n;
 }
 

@@ -36,7 +36,7 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
       caps_(hostCapsFor(ctx_->caps(), opt)),
       useBarrier_(!opt.baseline && ctx_->caps().textureBarrier),
       programs_(*ctx_, caps_, opt.shaderDumpDir, opt.programCacheDir), textures_(*ctx_),
-      fb_(*ctx_, mem, opt.scale), scale_(fb_.scale()), gpu_(*ctx_) {
+      fb_(*ctx_, mem, opt.scale), scale_(fb_.scale()), gpu_(*ctx_), state_(gl_, fb_, scale_) {
     if (hw_) {
         const std::string& r = ctx_->caps().renderer;
         const bool software = r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
@@ -50,6 +50,7 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
     gl_.GenBuffers(1, &vbo_);
     gl_.BindVertexArray(vao_);
     gl_.BindBuffer(GL_ARRAY_BUFFER, vbo_);
+    state_.useVertexArray(vao_, vbo_);
     if (!ctx_->headless() && gl_.ObjectLabel) {
         // GL_CURRENT: the vertex buffer doubles as the probe that tells our context (or one
         // sharing its objects) from another one current at a later call (currentIsOurs).
@@ -237,6 +238,9 @@ GlStats GlRendererImpl::stats() const {
     s.cpuTriangles = pipeline_.glTriangles();
     s.cpuTriangleCycles = pipeline_.hostPixels() / 3;  // pixels at 1/3 cycle (hle/ge_time.h)
     s.cpuGeometryBytes = geo_.reservedBytes() + drawGeo_.reservedBytes();
+    s.stateChanges = state_.counters().stateChanges;
+    s.uniformUploads = state_.counters().uniformUploads;
+    s.uniformUploadsSkipped = state_.counters().uniformUploadsSkipped;
     return s;
 }
 

@@ -3,7 +3,6 @@
 // functions are defined by concern:
 //   gl_renderer.cpp      construction, the Renderer entry points (draws join the batch), stats;
 //   gl_batch.cpp         a draw's setup, batching and the batch's GL draw (flush), GPU-vertex draws;
-//   gl_state_apply.cpp   GL state and uniforms of a flush, through a cache of what GL holds;
 //   gl_rtt_transfer.cpp  block transfers and render-to-texture (on the GPU in hardware mode);
 //   gl_present_host.cpp  host calls: entering/leaving the host's context, presenting and reading
 //                        frames, forgetting guest memory.
@@ -20,6 +19,7 @@
 #include "translator/gl_context.h"
 #include "translator/gl_host_state.h"
 #include "translator/gl_renderer.h"
+#include "translator/gl_state_cache.h"
 #include "translator/gpu_vertex_path.h"
 #include "translator/present.h"
 #include "translator/shader_cache.h"
@@ -65,35 +65,9 @@ public:
     void flushToMemory() override;
 
 private:
-    // Everything a batch's GL draw depends on. Compared byte-wise: always memset before filling.
-    struct Setup {
-        shadergen::VsKey vs;
-        shadergen::FsKey fs;
-        shadergen::FixedFunction ff;
-        shadergen::FsUniforms u;
-        GLuint texture;
-        GLuint clutTexture;  // palette of a CLUT16/32 texture read from a render target
-        u32 colorAddr, colorStride, colorFormat;
-        u32 depthAddr, depthStride, useDepth;
-        s32 scissor[4];  // inclusive x0, y0, x1, y1
-    };
-    // What GL holds now, so that applyState changes only what differs.
-    struct StateCache {
-        bool valid = false;
-        GLuint program = ~0u, texture = ~0u, dstColor = ~0u, dstDepth = ~0u, clutTexture = ~0u;
-        s32 scissor[4] = {};
-        bool colorMask[4] = {};
-        bool depthTest = false, depthMask = false;
-        u8 depthFunc = 0xFF;
-    };
-    // Per program: the fragment uniforms last uploaded (applyState).
-    struct UniformShadow {
-        shadergen::FsUniforms u;
-        bool valid = false;
-    };
-
     // gl_present_host.cpp
     bool currentIsOurs(std::string& err) const;
+    void forgetGlState();
 
     // gl_renderer.cpp
     void startDraw(const GeState& st, const shadergen::DrawFlags& flags);
@@ -105,19 +79,15 @@ private:
 
     // gl_batch.cpp
     bool beginDraw(const GeState& st, const shadergen::DrawFlags& flags);
-    bool makeSetup(const GeState& st, const shadergen::DrawFlags& flags, Setup& s);
+    bool makeSetup(const GeState& st, const shadergen::DrawFlags& flags, DrawSetup& s);
     bool drawPrimOnGpu(const PrimPacket& p);
     bool batchOverlaps(u32 begin, u32 end) const;
     void flush();
 
     // gl_rtt_transfer.cpp
     bool transferOnGpu(const TransferPacket& t);
-    bool sampleTarget(const GeState& st, Setup& s);
+    bool sampleTarget(const GeState& st, DrawSetup& s);
     GLuint paletteTexture(const GeState& st);
-
-    // gl_state_apply.cpp
-    void forgetGlState();
-    void applyState(const Setup& s, const Program& prog, GLuint dstColor, GLuint dstDepth);
 
     HostGlState hostState_;  // Current contexts: the host's state while ge2gl works (hostEnter)
     Memory& mem_;
@@ -149,10 +119,8 @@ private:
     Geometry drawGeo_;  // the current draw's geometry, before it joins the batch
     const GeState* drawState_ = nullptr;  // the current draw's state and flags (startDraw)
     shadergen::DrawFlags drawFlags_{};
-    Setup batchSetup_;
-    StateCache cache_;
-    std::unordered_map<GLuint, UniformShadow> uniformShadow_;
-    u64 seenClobbers_ = 0;
+    DrawSetup batchSetup_;
+    GlStateCache state_;  // what GL holds (gl_state_cache.h)
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
     std::string probeLabel_;  // GL_CURRENT with KHR_debug: vbo_'s label (currentIsOurs)

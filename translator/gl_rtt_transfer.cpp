@@ -51,7 +51,7 @@ bool GlRendererImpl::transferOnGpu(const TransferPacket& t) {
         if (overlap) return false;  // the GE's row order matters; a blit's is undefined
     }
     fb_.copyPixels(*src.target, src.x, src.y, *dst.target, dst.x, dst.y, int(t.width), int(t.height));
-    cache_.valid = false;
+    state_.invalidate();
     return true;
 }
 
@@ -62,7 +62,7 @@ bool GlRendererImpl::transferOnGpu(const TransferPacket& t) {
 // through a palette) look the pixel up in a palette texture. Not for mipmaps, CLUT4/8 (several
 // indices per pixel), swizzled textures or the draw's own colour target (a feedback loop):
 // those go through VRAM.
-bool GlRendererImpl::sampleTarget(const GeState& st, Setup& s) {
+bool GlRendererImpl::sampleTarget(const GeState& st, DrawSetup& s) {
     const Target* t = fb_.containing(Memory::drawingAddress(st.textureAddr(0)));
     if (!t) return false;
     const u32 tf = st.TPF_format();
@@ -101,7 +101,7 @@ bool GlRendererImpl::sampleTarget(const GeState& st, Setup& s) {
         s.u.clutMask = s32(st.CLUT_mask());
         s.clutTexture = paletteTexture(st);
     }
-    cache_.texture = ~0u;
+    state_.textureUnitUsed();
     ++stats_.rttGpu;
     return true;
 }
@@ -117,7 +117,7 @@ GLuint GlRendererImpl::paletteTexture(const GeState& st) {
         flush();
         for (auto& kv : palettes_) gl_.DeleteTextures(1, &kv.second);
         palettes_.clear();
-        cache_.clutTexture = ~0u;
+        state_.clutTexturesDeleted();
     }
     GLuint tex = 0;
     gl_.GenTextures(1, &tex);
@@ -129,7 +129,7 @@ GLuint GlRendererImpl::paletteTexture(const GeState& st) {
     gl_.PixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     gl_.TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8UI, 256, 1, 0, GL_RGBA_INTEGER, GL_UNSIGNED_BYTE, pal);
     palettes_.emplace(h, tex);
-    cache_.texture = ~0u;  // unit 0 was used for the upload
+    state_.textureUnitUsed();  // unit 0 was used for the upload
     return tex;
 }
 

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
-// The GL renderer's GL state (gl_renderer_impl.h): what a flush needs bound and enabled, and its
-// fragment uniforms, applied through a cache of what GL holds so that only changes reach the
-// driver.
+#include "translator/gl_state_cache.h"
+
 #include <cstring>
 
-#include "translator/gl_renderer_impl.h"
+#include "shadergen/shader_gen.h"
 
 namespace ge::gl {
 
@@ -17,14 +16,12 @@ GLenum glCompare(u8 geFunc) {
 
 }  // namespace
 
-// Drops every assumption about GL bindings (the host or another pass changed them).
-void GlRendererImpl::forgetGlState() {
+void GlStateCache::forget() {
     cache_ = StateCache{};
-    fb_.forgetBindings();
     seenClobbers_ = fb_.clobbers();
 }
 
-void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstColor, GLuint dstDepth) {
+void GlStateCache::apply(const DrawSetup& s, const Program& prog, GLuint dstColor, GLuint dstDepth) {
     if (fb_.clobbers() != seenClobbers_) {
         seenClobbers_ = fb_.clobbers();
         cache_.valid = false;
@@ -46,13 +43,13 @@ void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstC
     if (cache_.program != prog.id) {
         gl_.UseProgram(prog.id);
         cache_.program = prog.id;
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     if (std::memcmp(cache_.scissor, s.scissor, sizeof s.scissor) != 0) {
         gl_.Scissor(s.scissor[0] * scale_, s.scissor[1] * scale_, (s.scissor[2] - s.scissor[0] + 1) * scale_,
                     (s.scissor[3] - s.scissor[1] + 1) * scale_);
         std::memcpy(cache_.scissor, s.scissor, sizeof s.scissor);
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     // With a destination read the shader merges masks itself and writes every channel.
     bool cm[4];
@@ -60,7 +57,7 @@ void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstC
     if (std::memcmp(cm, cache_.colorMask, sizeof cm) != 0) {
         gl_.ColorMask(cm[0], cm[1], cm[2], cm[3]);
         std::memcpy(cache_.colorMask, cm, sizeof cm);
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     if (s.ff.depthTest != cache_.depthTest) {
         if (s.ff.depthTest)
@@ -68,17 +65,17 @@ void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstC
         else
             gl_.Disable(GL_DEPTH_TEST);
         cache_.depthTest = s.ff.depthTest;
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     if (s.ff.depthTest && s.ff.depthFunc != cache_.depthFunc) {
         gl_.DepthFunc(glCompare(s.ff.depthFunc));
         cache_.depthFunc = s.ff.depthFunc;
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     if (s.ff.depthMask != cache_.depthMask) {
         gl_.DepthMask(s.ff.depthMask ? GL_TRUE : GL_FALSE);
         cache_.depthMask = s.ff.depthMask;
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     }
     auto bindUnit = [&](int unit, GLuint tex, GLuint& cached) {
         if (tex == cached) return;
@@ -86,7 +83,7 @@ void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstC
         gl_.BindTexture(GL_TEXTURE_2D, tex);
         gl_.ActiveTexture(GL_TEXTURE0);
         cached = tex;
-        ++stats_.stateChanges;
+        ++counters_.stateChanges;
     };
     if (s.fs.tex) bindUnit(shadergen::kUnitTex, s.texture, cache_.texture);
     if (s.clutTexture) bindUnit(shadergen::kUnitClut, s.clutTexture, cache_.clutTexture);
@@ -98,12 +95,12 @@ void GlRendererImpl::applyState(const Setup& s, const Program& prog, GLuint dstC
     // draw). The shadow is dropped whenever a program is created (an id could come back).
     UniformShadow& shadow = uniformShadow_[prog.id];
     if (shadow.valid && std::memcmp(&shadow.u, &s.u, sizeof s.u) == 0) {
-        ++stats_.uniformUploadsSkipped;
+        ++counters_.uniformUploadsSkipped;
         return;
     }
     shadow.u = s.u;
     shadow.valid = true;
-    ++stats_.uniformUploads;
+    ++counters_.uniformUploads;
     const shadergen::FsUniforms& u = s.u;
     if (prog.ndcScale >= 0) gl_.Uniform2f(prog.ndcScale, 2.0f / kTargetSize, 2.0f / kTargetSize);
     if (prog.texEnv >= 0) gl_.Uniform3iv(prog.texEnv, 1, u.texEnv);
