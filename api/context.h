@@ -10,9 +10,10 @@
 // Peek syncs read a snapshot of the list states (snapshot mutex only), refreshed after every
 // chunk and every call, so they never wait for a draw.
 //
-// GL (gl_renderer.h glHostEnter): a call that touches GL enters the renderer's host scope through
-// Call::gl() — the headless context made current on this thread, or the host's state saved — and
-// leaves it when the call returns; around callbacks the scope is left and re-entered.
+// GL: a backend that works in a GL context offers backend/capabilities.h HostContextUser; a call
+// that touches GL enters its host scope through Call::gl() — the headless context made current on
+// this thread, or the host's state saved — and leaves it when the call returns; around callbacks
+// the scope is left and re-entered.
 #pragma once
 #define GE2GL_BUILDING_LIBRARY 1
 #include "ge2gl/ge2gl.h"
@@ -28,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "backend/factory.h"
 #include "debugger/debugger.h"
 #include "hle/ge_engine.h"
 #include "hle/memory.h"
@@ -68,7 +70,9 @@ private:
 struct ge2gl_context {
     std::unique_ptr<ge::u8[]> ownedRam;  // only when the host gives VRAM but not RAM
     std::unique_ptr<ge::Memory> mem;
-    std::unique_ptr<ge::Renderer> renderer;  // null for GE2GL_BACKEND_NULL (the engine's own null backend)
+    // The backend (backend/factory.h); its renderer is null for GE2GL_BACKEND_NULL (the engine's own
+    // null backend).
+    ge::backend::Backend drawBackend;
     std::unique_ptr<ge2gl_impl::RenderGate> gate;  // what the engine draws through (render_gate.h)
     std::unique_ptr<ge::GeEngine> engine;
     std::unique_ptr<ge::SceGe> sce;
@@ -122,7 +126,6 @@ struct ge2gl_context {
     ge::u64 workerCommands = 0;
 
     std::shared_ptr<struct ge2gl_recording> recording;  // ge2gl_record_begin/end (api/record.cpp)
-    bool isGl() const { return backend == GE2GL_BACKEND_GL_CURRENT || backend == GE2GL_BACKEND_GL_HEADLESS; }
     void workerLoop();
 };
 
@@ -142,7 +145,7 @@ public:
     explicit Call(ge2gl_context* h, CallKind kind = CallKind::Waits);
     ~Call();
     std::unique_lock<std::recursive_mutex>& lock() { return lk_; }
-    // Enters the GL scope for this call (no-op for other backends). Fails with
+    // Enters the GL scope for this call (no-op for backends without a HostContextUser). Fails with
     // GE2GL_ERR_WRONG_THREAD (GL_CURRENT on another thread), GE2GL_ERR_GL_CONTEXT (GL_CURRENT with
     // another context or none current) or GE2GL_ERR_BACKEND.
     ge2gl_status gl();

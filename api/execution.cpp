@@ -6,10 +6,6 @@
 #include <cstdio>
 #include <functional>
 
-#ifdef GE2GL_HAVE_GL
-#include "translator/gl_renderer.h"
-#endif
-
 namespace ge2gl_impl {
 
 namespace {
@@ -41,29 +37,16 @@ ge2gl_interrupt convert(const ge::SceInterrupt& in) {
     return out;
 }
 
-void glLeave(ge2gl_context* h) {
-#ifdef GE2GL_HAVE_GL
-    ge::gl::glHostLeave(*h->renderer);
-#else
-    (void)h;
-#endif
-}
+// The GL scope (context.h): only entered for a backend that offers a HostContextUser.
+void glLeave(ge2gl_context* h) { h->drawBackend.host->hostLeave(); }
 
-bool glEnter(ge2gl_context* h, std::string& err) {
-#ifdef GE2GL_HAVE_GL
-    return ge::gl::glHostEnter(*h->renderer, err);
-#else
-    (void)h;
-    err = "built without GL";
-    return false;
-#endif
-}
+bool glEnter(ge2gl_context* h, std::string& err) { return h->drawBackend.host->hostEnter(err); }
 
 // Applies mem_written ranges queued by threads that could not reach the GL context or came
 // while a draw was in progress. Straight to the backend: the caller holds the lock.
 void applyPendingWrites(ge2gl_context* h) {
-    if (h->renderer)
-        for (auto [a, n] : h->pendingWrites) h->renderer->memoryWritten(a, n);
+    if (ge::Renderer* r = h->drawBackend.renderer.get())
+        for (auto [a, n] : h->pendingWrites) r->memoryWritten(a, n);
     h->pendingWrites.clear();
 }
 
@@ -71,11 +54,11 @@ void applyPendingWrites(ge2gl_context* h) {
 
 void applyDeferred(ge2gl_context* h) {
     if (h->pendingHostWrote) {
-        if (h->renderer) h->renderer->hostMayHaveWritten(h->pendingHostWroteFb);
+        if (ge::Renderer* r = h->drawBackend.renderer.get()) r->hostMayHaveWritten(h->pendingHostWroteFb);
         h->pendingHostWrote = h->pendingHostWroteFb = false;
     }
     // GL_CURRENT's writes from other threads wait for GL (the next call that enters it).
-    if (!h->pendingWrites.empty() && (!h->isGl() || h->runGl)) applyPendingWrites(h);
+    if (!h->pendingWrites.empty() && (!h->drawBackend.host || h->runGl)) applyPendingWrites(h);
 }
 
 void tellHostMayHaveWritten(ge2gl_context* h, bool frameBuffers) {
@@ -134,7 +117,7 @@ void CListener::onSignal(const ge::SceInterrupt& in) {
 
 void CListener::onFinish(const ge::SceInterrupt& in) {
     // The list is complete: VRAM holds what it drew before the host hears of it (coherence).
-    if (!h->isGl() || h->runGl) {
+    if (!h->drawBackend.host || h->runGl) {
         if (!h->lazyWriteback) h->engine->renderer()->flushToMemory();
         else announceDirty(h);
     }
@@ -171,7 +154,7 @@ void CListener::onProgress(s32 listId, u32 pc) {
 }
 
 void announceDirty(ge2gl_context* h) {
-    if (!h->lazyWriteback || !h->vramDirty || !h->renderer) return;
+    if (!h->lazyWriteback || !h->vramDirty || !h->drawBackend.renderer) return;
     std::vector<std::pair<u32, u32>> ranges;
     h->engine->renderer()->takeDirtyRanges(ranges);
     if (ranges.empty()) return;
@@ -218,7 +201,7 @@ bool Call::glReachable() const {
 }
 
 ge2gl_status Call::gl() {
-    if (!h_->isGl() || glEntered_) return GE2GL_OK;
+    if (!h_->drawBackend.host || glEntered_) return GE2GL_OK;
     if (!glReachable())
         return error(GE2GL_ERR_WRONG_THREAD,
                      "GL_CURRENT draws on the host's context, current on the thread that created the handle; "
@@ -374,8 +357,8 @@ void ge2gl_context::workerLoop() {
                 continue;
             }
             std::string err;
-            const bool gl = isGl() && glEnter(this, err);
-            if (isGl() && !gl) {
+            const bool gl = drawBackend.host && glEnter(this, err);
+            if (drawBackend.host && !gl) {
                 // The context is busy elsewhere (a host thread inside a call holds it current
                 // cannot happen: calls hold the lock). Report and wait for the next kick.
                 message = "worker: " + err;

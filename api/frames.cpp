@@ -8,9 +8,6 @@
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
 #include "hle/pixel_format.h"
-#ifdef GE2GL_HAVE_GL
-#include "translator/gl_renderer.h"
-#endif
 
 using namespace ge2gl_impl;
 
@@ -138,27 +135,22 @@ ge2gl_status ge2gl_frame_texture_sized(ge2gl_context* h, uint32_t addr, uint32_t
         if (ge2gl_status s = frameArgs(c, h, addr, stride, format, width, height, &bytes); s != GE2GL_OK) return s;
         if (!out_width || !out_height || out_width > 8192 || out_height > 8192)
             return c.error(GE2GL_ERR_INVALID_ARGUMENT, "out_width/out_height must be 1-8192");
-        if (!h->isGl()) return c.error(GE2GL_ERR_UNSUPPORTED, "this backend has no GL textures (use ge2gl_read_frame)");
-#ifdef GE2GL_HAVE_GL
+        ge::backend::FramePresenter* presenter = h->drawBackend.presenter;
+        if (!presenter) return c.error(GE2GL_ERR_UNSUPPORTED, "this backend has no GL textures (use ge2gl_read_frame)");
         if (ge2gl_status s = c.gl(); s != GE2GL_OK) return s;
         std::string err;
-        const unsigned tex = ge::gl::glPresentFrame(*h->renderer, addr, stride, ge::GeBufferFormat(format), int(width),
-                                                    int(height), int(out_width), int(out_height), err);
+        const unsigned tex = presenter->presentFrame(addr, stride, ge::GeBufferFormat(format), int(width), int(height),
+                                                     int(out_width), int(out_height), err);
         if (!tex) return c.error(GE2GL_ERR_BACKEND, "the GL backend could not make the frame texture: " + err);
         *out_texture = tex;
         return GE2GL_OK;
-#else
-        return c.error(GE2GL_ERR_UNSUPPORTED, "built without GL");
-#endif
     });
 }
 
 ge2gl_status ge2gl_frame_texture(ge2gl_context* h, uint32_t addr, uint32_t stride, int32_t format, uint32_t width,
                                  uint32_t height, uint32_t* out_texture) {
     uint32_t n = 1;
-#ifdef GE2GL_HAVE_GL
-    if (h && h->isGl() && h->renderer) n = uint32_t(ge::gl::glRenderScale(*h->renderer));
-#endif
+    if (h && h->drawBackend.scaled) n = uint32_t(h->drawBackend.scaled->renderScale());
     return ge2gl_frame_texture_sized(h, addr, stride, format, width, height, width * n, height * n, out_texture);
 }
 

@@ -14,10 +14,6 @@
 
 #include "hle/ge_time.h"
 #include "hle/pixel_format.h"
-#include "softmodel/soft_renderer.h"
-#ifdef GE2GL_HAVE_GL
-#include "translator/gl_renderer.h"
-#endif
 
 using namespace ge2gl_impl;
 
@@ -29,6 +25,40 @@ thread_local std::string t_createMessage;
 ge2gl_status createFailed(ge2gl_status s, const std::string& why) {
     t_createMessage = why;
     return s;
+}
+
+// The handle's backend from the config (backend/factory.h); GE2GL_BACKEND_NULL has none (the
+// engine's own null backend). A failure is reported through createFailed.
+ge2gl_status makeBackend(const ge2gl_config* cfg, int32_t glMode, int32_t scale, bool has12, ge2gl_context& h) {
+    namespace be = ge::backend;
+    be::BackendOptions bo;
+    std::string err;
+    switch (cfg->backend) {
+    case GE2GL_BACKEND_NULL: return GE2GL_OK;
+    case GE2GL_BACKEND_SOFT:
+        bo.kind = be::BackendKind::Soft;
+        bo.threads = cfg->soft_threads;  // the output is identical for any thread count
+        h.drawBackend = be::createBackend(*h.mem, bo, err);
+        if (!h.drawBackend) return createFailed(GE2GL_ERR_BACKEND, "the software backend could not start");
+        return GE2GL_OK;
+    default: break;
+    }
+    if (!be::backendBuilt(be::BackendKind::Gl))
+        return createFailed(GE2GL_ERR_BACKEND, "this library was built without the GL backend (GE2GL_BUILD_GL=OFF)");
+    bo.kind = be::BackendKind::Gl;
+    bo.glContext = cfg->backend == GE2GL_BACKEND_GL_CURRENT ? be::GlContext::Current
+                   : cfg->gl_use_egl                        ? be::GlContext::EGL
+                                                            : be::GlContext::OSMesa;
+    bo.glMode = glMode == GE2GL_GL_MODE_HW ? be::GlMode::Hw : be::GlMode::Exact;
+    bo.scale = scale;
+    if (has12) bo.glLoader = cfg->gl_get_proc_address;
+    h.drawBackend = be::createBackend(*h.mem, bo, err);
+    if (!h.drawBackend) return createFailed(GE2GL_ERR_BACKEND, "GL backend: " + err);
+    // Created entered (the new context current, or the host's state saved): hand the thread back
+    // as it was.
+    if (be::HostContextUser* host = h.drawBackend.host) host->hostLeave();
+    h.glThread = std::this_thread::get_id();
+    return GE2GL_OK;
 }
 
 }  // namespace
@@ -130,39 +160,9 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
             h->mem = std::make_unique<ge::Memory>(ramSize);
         }
         h->backend = cfg->backend;
-        switch (cfg->backend) {
-        case GE2GL_BACKEND_NULL: break;
-        case GE2GL_BACKEND_SOFT: {
-            ge::soft::SoftOptions so;
-            so.threads = cfg->soft_threads;  // the output is identical for any thread count
-            h->renderer = ge::soft::createSoftRenderer(*h->mem, so);
-            if (!h->renderer) return createFailed(GE2GL_ERR_BACKEND, "the software backend could not start");
-            break;
-        }
-        default: {
-#ifdef GE2GL_HAVE_GL
-            ge::gl::GlOptions go;
-            go.context = cfg->backend == GE2GL_BACKEND_GL_CURRENT ? ge::gl::ContextKind::Current
-                         : cfg->gl_use_egl                        ? ge::gl::ContextKind::EGL
-                                                                  : ge::gl::ContextKind::OSMesa;
-            go.mode = glMode == GE2GL_GL_MODE_HW ? ge::gl::GlMode::Hw : ge::gl::GlMode::Exact;
-            go.scale = scale;
-            if (has12) go.loader = cfg->gl_get_proc_address;
-            std::string err;
-            h->renderer = ge::gl::createGlRenderer(*h->mem, go, err);
-            if (!h->renderer) return createFailed(GE2GL_ERR_BACKEND, "GL backend: " + err);
-            // Created entered (the new context current, or the host's state saved): hand the
-            // thread back as it was.
-            ge::gl::glHostLeave(*h->renderer);
-            h->glThread = std::this_thread::get_id();
-            break;
-#else
-            return createFailed(GE2GL_ERR_BACKEND, "this library was built without the GL backend (GE2GL_BUILD_GL=OFF)");
-#endif
-        }
-        }
+        if (ge2gl_status st = makeBackend(cfg, glMode, scale, has12, *h); st != GE2GL_OK) return st;
         // The engine draws through the gate, which leaves the handle's lock while the backend works.
-        if (h->renderer) h->gate = std::make_unique<RenderGate>(h.get(), h->renderer.get());
+        if (ge::Renderer* r = h->drawBackend.renderer.get()) h->gate = std::make_unique<RenderGate>(h.get(), r);
         h->engine = std::make_unique<ge::GeEngine>(*h->mem, h->gate.get());
         h->sce = std::make_unique<ge::SceGe>(*h->engine);
         h->listener.h = h.get();
@@ -216,7 +216,7 @@ void ge2gl_destroy(ge2gl_context* h) {
     h->sce.reset();
     h->engine.reset();
     h->gate.reset();
-    h->renderer.reset();
+    h->drawBackend = {};
     delete h;
 }
 

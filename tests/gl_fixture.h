@@ -94,7 +94,7 @@ public:
     }
 
     std::unique_ptr<Memory> mem;
-    std::unique_ptr<Renderer> renderer;
+    std::unique_ptr<gl::GlRenderer> renderer;
     std::unique_ptr<GeEngine> engine;
     std::unique_ptr<ListBuilder> b;
 };

@@ -29,7 +29,7 @@ TEST_P(GlFuzzFindings, DepthBufferOnTheColourBufferDrawsColour) {
     EXPECT_EQ(px32(40, 40), 0u);
 }
 
-// fuzz_replay_gl reuses one renderer for every input through glForgetGuestMemory: a target drawn
+// fuzz_replay_gl reuses one renderer for every input through forgetGuestMemory: a target drawn
 // into and not yet written back must be dropped, not written over the new memory, and the next
 // draw must start from what VRAM holds now (a fresh renderer's view).
 TEST_P(GlFuzzFindings, ForgetGuestMemoryActsAsAFreshRenderer) {
@@ -41,7 +41,7 @@ TEST_P(GlFuzzFindings, ForgetGuestMemoryActsAsAFreshRenderer) {
     b = std::make_unique<ListBuilder>(mem.get(), b->arenaNext());
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) mem->write32(0x04000000 + kFbOffset + u32(y * int(kStride) + x) * 4, 0xFF00FF00u);
-    gl::glForgetGuestMemory(*renderer);
+    renderer->forgetGuestMemory();
     renderer->flushToMemory();
     EXPECT_EQ(px32(10, 10), 0xFF00FF00u);  // the red square was not written back
     setupFrame();

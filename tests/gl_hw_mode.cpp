@@ -187,7 +187,7 @@ TEST(GlHwMode, ScaledFrameHoldsDetailFinerThanAPspPixel) {
         b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 3, nullptr, data.data());
     });
     std::vector<u32> hi;
-    ASSERT_EQ(gl::glReadScaledFrame(*r, 0x04000000, 64, GE_FORMAT_8888, 64, 64, hi), 2);
+    ASSERT_EQ(r->readScaledFrame(0x04000000, 64, GE_FORMAT_8888, 64, 64, hi), 2);
     ASSERT_EQ(hi.size(), size_t(128 * 128));
     int split = 0;
     for (int y = 0; y < 64; ++y)
@@ -265,8 +265,8 @@ bool renderHw(int scale, const std::function<void(ListBuilder&)>& build, Rendere
     auto r = gl::createGlRenderer(mem, hwOptions(scale), err);
     if (!r) return false;
     out.vram = runListVram(mem, *r, build);
-    out.stats = gl::glStats(*r);
-    gl::glReadScaledFrame(*r, 0x04000000, 64, GE_FORMAT_8888, 64, 64, out.scaled);
+    out.stats = r->stats();
+    r->readScaledFrame(0x04000000, 64, GE_FORMAT_8888, 64, 64, out.scaled);
     return true;
 }
 
@@ -435,7 +435,7 @@ TEST(GlHwMode, GpuVerticesNearClipAVertexBehindTheCamera) {
         auto r = gl::createGlRenderer(mem, o, err);
         if (!r) GTEST_SKIP() << err;
         const std::vector<u8> vram = runListVram(mem, *r, [cle](ListBuilder& b) { nearClipScene(b, cle); });
-        EXPECT_EQ(gl::glStats(*r).gpuVertexDraws, 1u);
+        EXPECT_EQ(r->stats().gpuVertexDraws, 1u);
         for (const auto& p : kNearClipProbes) {
             const size_t at = (size_t(p.y) * 512 + size_t(p.x)) * 4;
             EXPECT_EQ(readLE32(&vram[at]) & 0xFFFFFF, p.covered ? 0xFFFFFFu : 0u) << p.x << "," << p.y;
@@ -453,7 +453,7 @@ TEST(GlHwMode, GpuVerticesNearClipAVertexBehindTheCamera) {
         ASSERT_NE(r, nullptr) << err;
         const std::vector<u8> vram =
             runListVram(mem, *r, [asTriangles](ListBuilder& b) { nearClipFanScene(b, asTriangles); });
-        EXPECT_EQ(gl::glStats(*r).gpuVertexDraws, asTriangles ? 1u : 0u);
+        EXPECT_EQ(r->stats().gpuVertexDraws, asTriangles ? 1u : 0u);
         auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 512 + size_t(x)) * 4]) & 0xFFFFFF; };
         EXPECT_EQ(rgb(kFanProbeFirst.x, kFanProbeFirst.y), 0xFFFFFFu);
         EXPECT_EQ(rgb(kFanWedgeX, kFanWedgeY), asTriangles ? 0xFFFFFFu : 0u);
@@ -486,7 +486,7 @@ TEST(GlHwMode, ContinuationAfterAGpuDrawnStrip) {
     auto r = gl::createGlRenderer(mem, o, err);
     if (!r) GTEST_SKIP() << err;
     const std::vector<u8> vram = runListVram(mem, *r, build);
-    EXPECT_EQ(gl::glStats(*r).gpuVertexDraws, 1u);
+    EXPECT_EQ(r->stats().gpuVertexDraws, 1u);
     std::vector<u8> soft;
     renderVram(nullptr, build, soft, err);
     // The continued triangles (vertices 3-4-5 and 4-5-6) cover x around 330-390 at row 150.
@@ -517,7 +517,7 @@ TEST(GlHwMode, VertexPathAutoIsCpuOnASoftwareRasteriser) {
         auto r = gl::createGlRenderer(mem, o, err);
         if (!r) GTEST_SKIP() << err;
         runListVram(mem, *r, [](ListBuilder& b) { nearClipScene(b, false); });
-        EXPECT_EQ(gl::glStats(*r).gpuVertexDraws, v == gl::GlOptions::Vertices::Gpu ? 1u : 0u);
+        EXPECT_EQ(r->stats().gpuVertexDraws, v == gl::GlOptions::Vertices::Gpu ? 1u : 0u);
     }
 }
 
@@ -533,7 +533,7 @@ TEST(GlNullContext, ReplaysThroughTheTranslatorWithoutADriver) {
         auto r = gl::createGlRenderer(mem, o, err);
         ASSERT_NE(r, nullptr) << err;
         const std::vector<u8> vram = runListVram(mem, *r, [](ListBuilder& b) { edgeFreeScene(b, GE_FORMAT_8888); });
-        const gl::GlStats st = gl::glStats(*r);
+        const gl::GlStats st = r->stats();
         EXPECT_EQ(st.draws, 5u);  // the clear (one PRIM for 64 columns) + 4 rectangles
         EXPECT_GT(st.glDrawCalls, 0u);
         EXPECT_GT(st.shaderCompiles, 0u);

@@ -214,7 +214,7 @@ TEST(GlProgramCache, SecondRendererCompilesNothing) {
         std::string err;
         GlCacheScene s;
         if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
-        const gl::GlStats st = gl::glStats(*s.renderer);
+        const gl::GlStats st = s.renderer->stats();
         const u32 px[4] = {s.px32(4, 4), s.px32(20, 20), s.px32(40, 40), s.px32(60, 60)};
         if (pass == 0) {
             EXPECT_GT(st.shaderCompiles, 0u);
@@ -240,7 +240,7 @@ TEST(GlProgramCache, ShaderDumpWritesSources) {
         frags += e.path().extension() == ".frag";
         verts += e.path().extension() == ".vert";
     }
-    const gl::GlStats st = gl::glStats(*s.renderer);
+    const gl::GlStats st = s.renderer->stats();
     EXPECT_EQ(u64(frags), st.shaderCompiles);
     EXPECT_EQ(verts, frags);
     // Stats text has one line per counter.
@@ -262,9 +262,9 @@ TEST(GlContext, EglSurfacelessRendersLikeOsmesa) {
         if (!s.render(opt, err)) GTEST_SKIP() << (kind ? "EGL" : "OSMesa") << " unavailable: " << err;
         pixels[kind][0] = s.px32(4, 4);
         pixels[kind][1] = s.px32(20, 20);
-        // glPresentFrame gives a presentable texture name on either context.
+        // presentFrame gives a presentable texture name on either context.
         std::string perr;
-        EXPECT_NE(gl::glPresentFrame(*s.renderer, 0x04000000, 64, GE_FORMAT_8888, 64, 32, 128, 64, perr), 0u) << perr;
+        EXPECT_NE(s.renderer->presentFrame(0x04000000, 64, GE_FORMAT_8888, 64, 32, 128, 64, perr), 0u) << perr;
     }
     EXPECT_EQ(pixels[0][0], pixels[1][0]);
     EXPECT_EQ(pixels[0][1], pixels[1][1]);

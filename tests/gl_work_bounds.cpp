@@ -18,7 +18,7 @@
 namespace ge::gltest {
 namespace {
 
-std::unique_ptr<Renderer> makeGl(Memory& mem, gl::GlMode mode) {
+std::unique_ptr<gl::GlRenderer> makeGl(Memory& mem, gl::GlMode mode) {
     gl::GlOptions opt;
     opt.mode = mode;
     opt.vertices = gl::GlOptions::Vertices::Cpu;
@@ -52,7 +52,7 @@ TEST_P(GlWorkBounds, HugeDrawIsDrawnInBoundedParts) {
     auto gl = makeGl(mem, GetParam());
     if (!gl) GTEST_SKIP() << "no GL context";
     const std::vector<u8> glVram = runListVram(mem, *gl, [](ListBuilder& b) { drawLines(b, 1200); });
-    const gl::GlStats s = gl::glStats(*gl);
+    const gl::GlStats s = gl->stats();
     EXPECT_EQ(s.cpuTriangles, 1200u * 60 * 2);
     EXPECT_LE(s.batchPeak, gl::kGlBatchTriangles);
     EXPECT_GE(s.glDrawCalls, 3u);
@@ -80,8 +80,8 @@ TEST_P(GlWorkBounds, ArraysAreTrimmedAfterALargeBatch) {
     if (!gl) GTEST_SKIP() << "no GL context";
     runListVram(mem, *gl, [](ListBuilder& b) { drawLines(b, 500); });  // 60,000 GL triangles
     runListVram(mem, *gl, [](ListBuilder& b) { drawLines(b, 2); });
-    EXPECT_LE(gl::glStats(*gl).cpuGeometryBytes, 64u << 20);
-    EXPECT_LE(gl::glStats(*gl).cpuGeometryBytes,
+    EXPECT_LE(gl->stats().cpuGeometryBytes, 64u << 20);
+    EXPECT_LE(gl->stats().cpuGeometryBytes,
               4 * gl::Geometry::kTrimFloor * (3 * sizeof(gl::GlVertex) + sizeof(gl::PrimBounds) + sizeof(gl::TriRecord)));
 }
 
@@ -110,7 +110,7 @@ TEST_P(GlWorkBounds, LineFragmentsAreChargedToTheGeTimeBudget) {
     ASSERT_TRUE(dump::replayDump(d, eng, opt, res, err)) << err;
     EXPECT_TRUE(res.timeLimitHit);
     EXPECT_NE(res.warning.find("GE time budget"), std::string::npos) << res.warning;
-    const gl::GlStats s = gl::glStats(*gl);
+    const gl::GlStats s = gl->stats();
     const u64 budget = getime::cyclesFromMs(kMs);
     // The quads alone may cost the budget, give or take one line's (480 fragments).
     EXPECT_GT(s.cpuTriangles, 0u);
@@ -136,8 +136,8 @@ TEST_P(GlWorkBounds, NothingIsChargedWithoutATimeLimit) {
     auto gl = makeGl(mem, GetParam());
     if (!gl) GTEST_SKIP() << "no GL context";
     const GeStats glStats = run(mem, *gl);
-    EXPECT_EQ(gl::glStats(*gl).cpuTriangles, 10u * 60 * 2);
-    EXPECT_EQ(gl::glStats(*gl).cpuTriangleCycles, 0u);
+    EXPECT_EQ(gl->stats().cpuTriangles, 10u * 60 * 2);
+    EXPECT_EQ(gl->stats().cpuTriangleCycles, 0u);
     Memory softMem;
     soft::SoftOptions so;
     so.threads = 1;

@@ -220,7 +220,7 @@ bool vramAround(const dump::Dump& d, u64 k, std::vector<u8>& before, std::vector
     tools::RenderOptions ro;
     ro.threads = 1;
     std::string err;
-    auto backend = tools::createBackend(ro, mem, err);
+    auto backend = tools::createBackend(ro, mem, err).renderer;
     if (!backend) return false;
     tools::DrawHook hook(*backend);
     GeEngine eng(mem, &hook);

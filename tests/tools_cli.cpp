@@ -307,7 +307,7 @@ TEST(RenderReuse, WarmReplayDrawsTheSameFrame) {
             FAIL() << err;
         }
         Memory mem;
-        std::unique_ptr<Renderer> be;
+        backend::Backend be;
         ASSERT_TRUE(tools::renderDump(d, o, first, err, nullptr, nullptr, &mem, &be)) << err;
         ASSERT_TRUE(tools::renderDump(d, o, second, err, nullptr, nullptr, &mem, &be)) << err;
         EXPECT_EQ(tools::mseRGB(fresh.frame, first.frame), 0.0) << mode;

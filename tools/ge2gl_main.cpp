@@ -210,9 +210,9 @@ int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& 
         u64 draws = 0;
         // --warm: one backend per dump for all runs, after an untimed first run (the steady state
         // of an emulator's next frame: textures decoded, programs compiled, targets allocated).
-        std::unique_ptr<Renderer> be, engineBe;
-        std::unique_ptr<Renderer>* keep = warm ? &be : nullptr;
-        std::unique_ptr<Renderer>* keepEngine = warm ? &engineBe : nullptr;
+        backend::Backend be, engineBe;
+        backend::Backend* keep = warm ? &be : nullptr;
+        backend::Backend* keepEngine = warm ? &engineBe : nullptr;
         for (int i = warm ? -1 : 0; i < repeat; ++i) {
             tools::RenderOutput out;
             if (!tools::renderDump(d, opt, out, err, nullptr, nullptr, &mem, keep)) return fail(path + ": " + err);

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/capabilities.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
 
@@ -84,32 +85,33 @@ struct GlStats {
     u64 cpuVertexByReason[8] = {};  // gpu_vertex_path.h CpuReason order
 };
 
-// Creates the context (unless Current) and the renderer; nullptr + err when GL is unavailable.
-std::unique_ptr<ge::Renderer> createGlRenderer(ge::Memory& mem, const GlOptions& opt, std::string& err);
-GlStats glStats(const ge::Renderer& r);     // r must come from createGlRenderer
+// The GL translator as a backend: a Renderer offering every optional interface of
+// backend/capabilities.h, plus what only GL tests and tools ask of it. The drawing class itself
+// is translator-internal (gl_renderer_impl.h).
+//
+// HostContextUser (gl_host_state.h): plugin API calls that touch GL are bracketed by
+// hostEnter/hostLeave: a headless context is made current on the calling thread and the thread's
+// previous one restored after; a host's context has its state saved and restored; either way the
+// renderer re-establishes its own state on entry. FramePresenter: the texture comes from
+// present.h. ScaledRendering: read from the render target where one holds the frame.
+class GlRenderer : public Renderer,
+                   public backend::FramePresenter,
+                   public backend::ScaledRendering,
+                   public backend::HostContextUser,
+                   public backend::StatsSource {
+public:
+    virtual GlStats stats() const = 0;
+    // Guest memory was replaced wholesale (the host restored it, or reuses the renderer for
+    // another dump): draws what is batched, then drops every render target, texture and palette
+    // without writing anything back. The renderer then reads memory as a fresh one would;
+    // compiled programs stay (creating them dominates a fresh renderer's cost). The fuzz harness
+    // replay_gl runs each input this way.
+    virtual void forgetGuestMemory() = 0;
+};
+
+// Creates the context (unless Current) and the renderer, entered (HostContextUser); nullptr +
+// err when GL is unavailable or the options are out of range.
+std::unique_ptr<GlRenderer> createGlRenderer(ge::Memory& mem, const GlOptions& opt, std::string& err);
 std::string glStatsText(const GlStats& s);  // one line per counter
-// The frame at vramAddr (stride pixels, format fmt) at render scale N: (w·N)×(h·N) RGBA8888 with
-// alpha 255 (R in bits 0–7), row 0 = top line, read from the render target where one holds it and
-// from VRAM (each pixel repeated N×N) elsewhere. Returns N.
-int glReadScaledFrame(ge::Renderer& r, u32 vramAddr, u32 stride, GeBufferFormat fmt, int w, int h,
-                      std::vector<u32>& rgba);
-// GL texture name (RGBA8, row 0 = top line, outW x outH) holding the w x h frame at addr (VRAM or
-// RAM) for presenting (plugin API; present.h). Valid until the next call; 0 and err on error.
-unsigned glPresentFrame(ge::Renderer& r, u32 addr, u32 stride, GeBufferFormat fmt, int w, int h, int outW, int outH,
-                        std::string& err);
-int glRenderScale(const ge::Renderer& r);
-// Guest memory was replaced wholesale (the host restored it, or reuses the renderer for another
-// dump): draws what is batched, then drops every render target, texture and palette without
-// writing anything back. The renderer then reads memory as a fresh one would; compiled programs
-// stay (creating them dominates a fresh renderer's cost). The fuzz harness replay_gl runs each
-// input this way.
-void glForgetGuestMemory(ge::Renderer& r);
-// Plugin API calls that touch GL are bracketed by these (gl_host_state.h): a headless context is
-// made current on the calling thread and the thread's previous one restored after; a host's
-// context has its state saved and restored; either way the renderer re-establishes its own state
-// on entry. Nested pairs count. A renderer is created entered: the first glHostLeave() hands the
-// thread (or the host's state) back.
-bool glHostEnter(ge::Renderer& r, std::string& err);
-void glHostLeave(ge::Renderer& r);
 
 }  // namespace ge::gl

@@ -4,32 +4,25 @@
 #include <cstdio>
 #include <cstring>
 
-#include "softmodel/soft_renderer.h"
-#ifdef GE2GL_HAVE_GL
-#include "translator/gl_renderer.h"
-#endif
+#include "backend/factory.h"
 
 namespace ge::conformance {
 
 bool GuSim::create(const std::string& backend, std::string& err) {
     backend_ = backend;
     mem_ = std::make_unique<Memory>();
+    ge::backend::BackendOptions bo;
     if (backend == "soft") {
-        soft::SoftOptions so;
-        so.threads = 1;
-        renderer_ = soft::createSoftRenderer(*mem_, so);
+        bo.kind = ge::backend::BackendKind::Soft;
+        bo.threads = 1;
     } else if (backend == "gl") {
-#ifdef GE2GL_HAVE_GL
-        renderer_ = gl::createGlRenderer(*mem_, gl::GlOptions{}, err);
-        if (!renderer_) return false;
-#else
-        err = "GL backend not built";
-        return false;
-#endif
+        bo.kind = ge::backend::BackendKind::Gl;
     } else {
         err = "unknown backend " + backend;
         return false;
     }
+    renderer_ = ge::backend::createBackend(*mem_, bo, err).renderer;
+    if (!renderer_) return false;
     engine_ = std::make_unique<GeEngine>(*mem_, renderer_.get());
     return true;
 }

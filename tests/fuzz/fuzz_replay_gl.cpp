@@ -4,7 +4,7 @@
 //
 // Creating a context and compiling the first programs costs far more than a replay, so one
 // renderer serves the whole process: before each input its memory is cleared and the renderer
-// forgets every render target, texture and palette (glForgetGuestMemory), which leaves it
+// forgets every render target, texture and palette (GlRenderer::forgetGuestMemory), which leaves it
 // equivalent to a fresh one for that input (generated programs are a pure function of their
 // keys). Re-uploading the zeros into every target instead (memoryWritten over all of VRAM) took
 // 60% of the harness's time. Without a GL context every input is a no-op (said once).
@@ -30,13 +30,13 @@ namespace {
 constexpr u64 kMaxPrograms = 512;
 
 Memory* gMem = nullptr;
-Renderer* gGl = nullptr;
+gl::GlRenderer* gGl = nullptr;
 
-Renderer* makeRenderer() {
+gl::GlRenderer* makeRenderer() {
     gl::GlOptions go;
     go.context = gl::ContextKind::OSMesa;
     std::string err;
-    Renderer* r = gl::createGlRenderer(*gMem, go, err).release();
+    gl::GlRenderer* r = gl::createGlRenderer(*gMem, go, err).release();
     if (!r) std::fprintf(stderr, "fuzz_replay_gl: no GL context (%s): every input is skipped\n", err.c_str());
     return r;
 }
@@ -58,12 +58,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::string err;
     if (!fuzz::loadFuzzDump(data, size, d, err)) return 0;
     gMem->clear();
-    if (gl::glStats(*gGl).shaderCompiles >= kMaxPrograms) {
+    if (gGl->stats().shaderCompiles >= kMaxPrograms) {
         delete gGl;
         gGl = makeRenderer();
         if (!gGl) return 0;
     }
-    gl::glForgetGuestMemory(*gGl);
+    gGl->forgetGuestMemory();
     fuzz::BoundedRenderer r(*gGl);
     r.reset();
     GeEngine eng(*gMem, &r);

@@ -258,7 +258,7 @@ private:
 
 void runSide(Side& s, int i, Lockstep& ls) {
     s.mem = std::make_unique<Memory>();
-    s.backend = createBackend(s.ro, *s.mem, s.err);
+    s.backend = createBackend(s.ro, *s.mem, s.err).renderer;
     if (!s.backend) {
         ls.finished(i, true);
         return;

@@ -181,7 +181,7 @@ bool ownershipReplay(const dump::Dump& d, const RenderOptions& ro, u32 addr, u32
                      std::unordered_map<u32, DrawInfo>& infos, u32& shownAddr, u32& shownStride, u32& shownFmt,
                      std::string& err) {
     Memory mem;
-    std::unique_ptr<Renderer> backend = createBackend(ro, mem, err);
+    std::unique_ptr<Renderer> backend = createBackend(ro, mem, err).renderer;
     if (!backend) return false;
     DrawHook hook(*backend);
     GeEngine eng(mem, &hook);

@@ -359,10 +359,10 @@ dump::Dump recordFuzzCase(const FuzzCase& c) {
     return w.dump();
 }
 
-// Backends and memories kept between renders of one side (renderDump's `reuse` / `backend`).
+// Backends and memories kept between renders of one side (renderDump's `reuse` / `held`).
 struct FuzzSides {
     Memory mem[2];
-    std::unique_ptr<Renderer> backend[2];
+    backend::Backend backends[2];
     std::vector<u8> vram[2];
     std::vector<u16> depth[2];
 };
@@ -393,9 +393,9 @@ bool fuzzCompare(const dump::Dump& d, const FuzzOptions& o, FuzzSides* sides, bo
     RenderOutput out[2];
     for (int side = 0; side < 2; ++side) {
         if (!renderDump(d, sideOptions(o, side), out[side], err, &s.vram[side], o.compareDepth ? &s.depth[side] : nullptr,
-                        sides ? &s.mem[side] : nullptr, sides ? &s.backend[side] : nullptr)) {
+                        sides ? &s.mem[side] : nullptr, sides ? &s.backends[side] : nullptr)) {
             err = (side == 0 ? o.backend : o.refBackend) + ": " + err;
-            if (sides) s.backend[side].reset();  // start the next case afresh
+            if (sides) s.backends[side] = {};  // start the next case afresh
             return false;
         }
     }

@@ -1,101 +1,92 @@
 // SPDX-License-Identifier: MIT
 #include "tools/lib/render.h"
 
+#include <cctype>
 #include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 
-#include "softmodel/soft_renderer.h"
 #include "tools/lib/draw_hook.h"
-#ifdef GE2GL_HAVE_GL
-#include "translator/gl_renderer.h"
-#endif
 
 namespace ge::tools {
 
-std::unique_ptr<Renderer> createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
-    if (opt.backend == "null") return std::make_unique<NullRenderer>();
-    if (opt.backend == "soft") {
-        soft::SoftOptions so;
-        so.threads = opt.threads;
-        return soft::createSoftRenderer(mem, so);
-    }
-    if (opt.backend == "gl") {
-#ifdef GE2GL_HAVE_GL
-        gl::GlOptions go;
-        if (opt.glContext == "egl") go.context = gl::ContextKind::EGL;
-        else if (opt.glContext == "null") go.context = gl::ContextKind::Null;
+backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
+    backend::BackendOptions bo;
+    if (opt.backend == "null") {
+        bo.kind = backend::BackendKind::Null;
+    } else if (opt.backend == "soft") {
+        bo.kind = backend::BackendKind::Soft;
+        bo.threads = opt.threads;
+    } else if (opt.backend == "gl") {
+        if (!backend::backendBuilt(backend::BackendKind::Gl)) {
+            err = "backend 'gl' is not built in this version of ge2gl";
+            return {};
+        }
+        bo.kind = backend::BackendKind::Gl;
+        if (opt.glContext == "egl") bo.glContext = backend::GlContext::EGL;
+        else if (opt.glContext == "null") bo.glContext = backend::GlContext::Null;
         else if (opt.glContext != "osmesa") {
             err = "unknown GL context '" + opt.glContext + "' (use osmesa, egl or null)";
-            return nullptr;
+            return {};
         }
-        go.baseline = opt.glBaseline;
-        if (opt.glMode == "hw") go.mode = gl::GlMode::Hw;
+        bo.glBaseline = opt.glBaseline;
+        if (opt.glMode == "hw") bo.glMode = backend::GlMode::Hw;
         else if (opt.glMode != "exact") {
             err = "unknown GL mode '" + opt.glMode + "' (use exact or hw)";
-            return nullptr;
+            return {};
         }
-        go.scale = opt.scale;
-        if (opt.glVertices == "gpu") go.vertices = gl::GlOptions::Vertices::Gpu;
-        else if (opt.glVertices == "cpu") go.vertices = gl::GlOptions::Vertices::Cpu;
+        bo.scale = opt.scale;
+        if (opt.glVertices == "gpu") bo.glVertices = backend::GlVertices::Gpu;
+        else if (opt.glVertices == "cpu") bo.glVertices = backend::GlVertices::Cpu;
         else if (opt.glVertices != "auto") {
             err = "unknown vertex path '" + opt.glVertices + "' (use auto, gpu or cpu)";
-            return nullptr;
+            return {};
         }
-        go.shaderDumpDir = opt.shaderDumpDir;
-        go.programCacheDir = opt.programCacheDir;
-        auto r = gl::createGlRenderer(mem, go, err);
-        if (!r && err.empty()) err = "could not create the GL backend";
-        return r;
-#else
-        err = "backend 'gl' is not built in this version of ge2gl";
-        return nullptr;
-#endif
+        bo.shaderDumpDir = opt.shaderDumpDir;
+        bo.programCacheDir = opt.programCacheDir;
+    } else {
+        err = "unknown backend '" + opt.backend + "' (use soft, gl or null)";
+        return {};
     }
-    err = "unknown backend '" + opt.backend + "' (use soft, gl or null)";
-    return nullptr;
+    backend::Backend b = backend::createBackend(mem, bo, err);
+    if (!b && err.empty()) err = "could not create the GL backend";  // soft and null always start
+    return b;
 }
 
-std::string backendStats(const std::string& backend, const Renderer& r) {
-#ifdef GE2GL_HAVE_GL
-    if (backend == "gl") return gl::glStatsText(gl::glStats(r));
-#endif
-    (void)backend;
-    (void)r;
-    return {};
-}
+std::string backendStats(const backend::Backend& b) { return b.stats ? b.stats->statsText() : std::string(); }
 
 bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
-                std::vector<u8>* vramOut, std::vector<u16>* depthOut, Memory* reuse, std::unique_ptr<Renderer>* backend) {
+                std::vector<u8>* vramOut, std::vector<u16>* depthOut, Memory* reuse, backend::Backend* held) {
     auto t0 = std::chrono::steady_clock::now();
     std::optional<Memory> fresh;
     if (reuse) reuse->clear();
     Memory& mem = reuse ? *reuse : fresh.emplace();
-    std::unique_ptr<Renderer> own;
-    const bool held = backend && reuse;
-    std::unique_ptr<Renderer>& r = held ? *backend : own;
-    const bool reused = r != nullptr;
-    if (!r) {
-        r = createBackend(opt, mem, err);
-        if (!r) return false;
+    backend::Backend own;
+    const bool keep = held && reuse;
+    backend::Backend& be = keep ? *held : own;
+    const bool reused = bool(be);
+    if (!be) {
+        be = createBackend(opt, mem, err);
+        if (!be) return false;
     }
-#ifdef GE2GL_HAVE_GL
-    // A GL renderer is created with its context current (entered). One held between replays
-    // leaves it and enters again for each replay: another GL renderer created or destroyed on
-    // this thread in between (the fuzzer's fresh re-checks, blame) changes the current context,
-    // and a held renderer that stayed "entered" sent its GL calls to no context (black frames).
+    Renderer* r = be.renderer.get();
+    // A backend working in a GL context is created with it current (entered). One held between
+    // replays leaves it and enters again for each replay: another GL renderer created or
+    // destroyed on this thread in between (the fuzzer's fresh re-checks, blame) changes the
+    // current context, and a held renderer that stayed "entered" sent its GL calls to no context
+    // (black frames).
     struct HostScope {
-        Renderer* r = nullptr;
+        backend::HostContextUser* host = nullptr;
         ~HostScope() {
-            if (r) gl::glHostLeave(*r);
+            if (host) host->hostLeave();
         }
     } hostScope;
-    if (held && opt.backend == "gl") {
-        if (!reused) gl::glHostLeave(*r);
-        if (!gl::glHostEnter(*r, err)) return false;
-        hostScope.r = r.get();
+    if (keep && be.host) {
+        if (!reused) be.host->hostLeave();
+        if (!be.host->hostEnter(err)) return false;
+        hostScope.host = be.host;
     }
-#endif
     if (reused) {
         // Everything the backend cached from memory is stale: the replay starts from cleared memory.
         r->memoryWritten(0x04000000, Memory::kVramSize);
@@ -106,7 +97,7 @@ bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out
     // (readback, scaled frame, stats) talks to the backend itself.
     std::optional<DrawHook> hook;
     if (opt.keepDraw) hook.emplace(*r).keep = opt.keepDraw;
-    GeEngine eng(mem, hook ? static_cast<Renderer*>(&*hook) : r.get());
+    GeEngine eng(mem, hook ? static_cast<Renderer*>(&*hook) : r);
     dump::ReplayOptions ro;
     ro.replayEnd = opt.replayEnd;
     ro.timing = opt.replayTiming;
@@ -114,18 +105,16 @@ bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out
     if (!dump::replayDump(d, eng, ro, out.replay, err)) return false;
     dump::displayedFramebuffer(out.replay, eng.state(), out.displayAddr, out.displayStride, out.displayFormat);
     out.frame = readFrame(mem, out.displayAddr, out.displayStride, out.displayFormat);
-#ifdef GE2GL_HAVE_GL
-    if (opt.backend == "gl" && opt.scale > 1) {
-        // The displayed frame at render scale, from the scaled render target.
+    if (be.scaled && opt.scale > 1) {
+        // The displayed frame at render scale, from what the backend drew at that scale.
         Image& hi = out.frameScaled;
         hi.width = 480 * opt.scale, hi.height = 272 * opt.scale;
-        gl::glReadScaledFrame(*r, out.displayAddr, out.displayStride, GeBufferFormat(out.displayFormat & 3), 480, 272,
-                              hi.rgba);
+        be.scaled->readScaledFrame(out.displayAddr, out.displayStride, GeBufferFormat(out.displayFormat & 3), 480, 272,
+                                   hi.rgba);
         out.frame = boxDownsample(hi, opt.scale);
     }
-#endif
     out.engineStats = eng.stats();
-    out.backendStats = backendStats(opt.backend, *r);
+    out.backendStats = backendStats(be);
     out.depthAddr = eng.state().depthbufAddr();
     out.depthStride = eng.state().depthbufStride();
     if (vramOut) vramOut->assign(mem.vram(), mem.vram() + Memory::kVramSize);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "backend/factory.h"
 #include "hle/dump/player.h"
 #include "hle/ge_engine.h"
 #include "tools/lib/image.h"
@@ -40,9 +41,10 @@ struct RenderOutput {
     double seconds = 0;            // load + replay + readback
 };
 
-// Backends by name; a backend not compiled in gives a clear error.
-std::unique_ptr<Renderer> createBackend(const RenderOptions& opt, Memory& mem, std::string& err);
-std::string backendStats(const std::string& backend, const Renderer& r);
+// Backends by name (backend/factory.h); a backend not compiled in gives a clear error.
+backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err);
+// The backend's own counters (those that offer them: GL), else empty.
+std::string backendStats(const backend::Backend& b);
 
 // Loads and replays one dump file. `vramOut`, when non-null, receives the 2 MiB of VRAM after the
 // frame (linear view, exactly as a game reading 0x04000000–0x041FFFFF sees it).
@@ -50,12 +52,12 @@ bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOut
                     std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr);
 // `reuse`, when non-null, is cleared (Memory::clear) and replayed into instead of a fresh Memory:
 // `ge2gl bench` keeps one for all its runs; it holds the frame afterwards.
-// `backend`, when non-null, keeps the backend between calls (with `reuse`): a held one is told that
+// `held`, when non-null, keeps the backend between calls (with `reuse`): a held one is told that
 // all of memory changed and replayed into again — the steady state of an emulator's next frame
 // (textures decoded, programs compiled); an empty one is filled.
 bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out, std::string& err,
                 std::vector<u8>* vramOut = nullptr, std::vector<u16>* depthOut = nullptr, Memory* reuse = nullptr,
-                std::unique_ptr<Renderer>* backend = nullptr);
+                backend::Backend* held = nullptr);
 
 // "NAME" of a dump path: file name without directories and without .zip / .ppdmp suffixes.
 std::string dumpName(const std::string& path);

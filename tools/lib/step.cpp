@@ -120,7 +120,7 @@ bool stepDump(const std::string& path, const StepOptions& opt, StepResult& out, 
     dump::Dump d;
     if (!dump::loadDump(path, d, err)) return false;
     Memory mem;
-    std::unique_ptr<Renderer> backend = createBackend(opt.render, mem, err);
+    std::unique_ptr<Renderer> backend = createBackend(opt.render, mem, err).renderer;
     if (!backend) return false;
     GeEngine eng(mem, backend.get());
     debug::Breakpoints bp;

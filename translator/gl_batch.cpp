@@ -1,0 +1,290 @@
+// SPDX-License-Identifier: MIT
+// The GL renderer's batching (gl_renderer_impl.h): a draw's setup, the batch it joins, and the
+// batch's GL draw with its destination-read grouping (see gl_renderer.cpp); hardware mode's PRIM
+// draws with their vertex work in the vertex shader.
+#include <algorithm>
+#include <cstring>
+
+#include "geometry/texture_size.h"
+#include "translator/gl_renderer_impl.h"
+
+namespace ge::gl {
+
+namespace {
+
+bool overlaps(const PrimBounds& a, const PrimBounds& b) {
+    return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
+}
+
+// True when the depth buffer rows a draw needs share bytes with colour target t (linear VRAM).
+bool depthOverlapsColor(const Target& t, u32 depthAddr, u32 depthStride, int rows) {
+    const u64 begin = Memory::drawingAddress(depthAddr);
+    const u64 end = begin + u64(std::clamp(rows, 1, kTargetSize)) * depthStride * 2;
+    return begin < t.end() && end > t.addr;
+}
+
+}  // namespace
+
+// Computes the setup of a draw; flushes the pending batch when it differs. False when the
+// draw cannot produce pixels (empty scissor, unusable buffers).
+bool GlRendererImpl::beginDraw(const GeState& st, const shadergen::DrawFlags& flags) {
+    DrawSetup s;
+    if (!makeSetup(st, flags, s)) return false;
+    if (geo_.empty() || std::memcmp(&s, &batchSetup_, sizeof s) != 0) {
+        flush();
+        std::memcpy(static_cast<void*>(&batchSetup_), &s, sizeof s);
+        batchGeneration_ = generation_;
+    }
+    return true;
+}
+
+// The setup of a draw (keys, uniforms, targets, scissor, texture made ready). False when the
+// draw cannot produce pixels.
+bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& flags, DrawSetup& s) {
+    std::memset(static_cast<void*>(&s), 0, sizeof s);
+    const shadergen::PipelineKeys keys = shadergen::keysFromState(st, flags, caps_, opt_.baseline);
+    s.vs = keys.vs;
+    s.fs = keys.fs;
+    s.ff = keys.ff;
+    shadergen::uniformsFromState(st, s.u);
+    s.colorAddr = Memory::drawingAddress(st.framebufAddr());
+    s.colorStride = st.framebufStride();
+    s.colorFormat = st.framebufFormat();
+    s.useDepth = (keys.ff.usesDepth || keys.fs.depthRead != shadergen::DepthRead::None) ? 1 : 0;
+    if (s.useDepth) {
+        s.depthAddr = Memory::drawingAddress(st.depthbufAddr());
+        s.depthStride = st.depthbufStride();
+    }
+    // Scissor ∩ REGION2, inclusive (ge-rules.md §8.6), limited to the buffer width and target size.
+    s.scissor[0] = s32(st.SCISSOR1_x());
+    s.scissor[1] = s32(st.SCISSOR1_y());
+    s.scissor[2] = std::min({s32(st.SCISSOR2_x()), s32(st.REGION2_x()), s32(s.colorStride) - 1, kTargetSize - 1});
+    s.scissor[3] = std::min({s32(st.SCISSOR2_y()), s32(st.REGION2_y()), kTargetSize - 1});
+    if (s.colorStride == 0 || s.scissor[2] < s.scissor[0] || s.scissor[3] < s.scissor[1]) {
+        flush();
+        return false;
+    }
+    if (s.useDepth && s.depthStride == 0) s.useDepth = 0;
+    s.u.texScale = 1;
+    if (s.fs.tex && hw_ && sampleTarget(st, s)) {
+        // Render-to-texture on the GPU: the render target is the texture (no VRAM round trip).
+    } else if (s.fs.tex) {
+        const int levels = s.fs.texMip ? int(std::min<u32>(st.TMODE_maxlevel(), 7)) + 1 : 1;
+        // Render-to-texture: pending draws into the texture's bytes, then the targets' pixels,
+        // must be in VRAM before the texture is decoded.
+        u32 srcBegin, srcEnd;
+        TextureCache::sourceRange(st, levels, srcBegin, srcEnd);
+        const u32 lin = Memory::drawingAddress(srcBegin);
+        const u32 linEnd = lin + (srcEnd - srcBegin);
+        if (!geo_.empty() && batchOverlaps(lin, linEnd)) flush();
+        const u64 wb = fb_.writeBacks();
+        fb_.syncRange(lin, std::max<u32>(linEnd - lin, 1));
+        if (fb_.writeBacks() != wb) ++generation_;
+        // A re-upload reuses the GL texture object: draw what is pending with the old contents.
+        if (!geo_.empty() && generation_ != batchGeneration_) flush();
+        const bool clut = st.textureFormat() >= GE_TFMT_CLUT4 && st.textureFormat() <= GE_TFMT_CLUT32;
+        const u64 clutHash = clut ? shadergen::hashBytes(st.clut, sizeof st.clut) : 0;
+        const TextureEntry* e = textures_.get(mem_, st, levels, generation_, clutHash);
+        state_.textureUnitUsed();  // the cache may have rebound unit 0
+        if (!e) {
+            flush();
+            return false;
+        }
+        s.texture = e->tex;
+        // (atlas y, 2^n w, 2^n h, 0): the shader scales coordinates by the unclamped 2^n and
+        // addresses the min(2^n, 512) texels placed in the atlas (geometry/texture_size.h).
+        for (int l = 0; l < 8; ++l) {
+            const int pl = std::min(l, e->levels - 1);
+            for (int i = 0; i < 4; ++i) s.u.texLevels[l][i] = e->placement[pl][i];
+            s.u.texLevels[l][1] = int(geo::texCoordWidth(st, pl));
+            s.u.texLevels[l][2] = int(geo::texCoordHeight(st, pl));
+        }
+        s.u.texMaxLevel = e->levels - 1;
+    }
+    return true;
+}
+
+// Hardware mode: the PRIM draw with its vertex work in the vertex shader (gpu_vertex_path.h);
+// false when it stays on the CPU path.
+bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
+    const GeState& st = *p.state;
+    const VertexSettings vs = vertexSettings(st);
+    shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st);
+    // The colours reaching the fragments only matter to the reference's skipped alpha test;
+    // prepare() keeps the draws where that rule could fire on the CPU.
+    flags.vertexAlphaFull = true;
+    const bool dstTexture =
+        shadergen::keysFromState(st, flags, caps_, opt_.baseline).fs.dstRead == shadergen::DstRead::Texture;
+    if (!gpu_.prepare(mem_, st, p, vs.texture, vs.fog, vs.cull, vs.cullCcw, dstTexture, gpuDraw_)) return false;
+    // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
+    pipeline_.keepOpenVertices(mem_, st, p);
+    DrawSetup s;
+    if (!makeSetup(st, flags, s)) {
+        flush();
+        return true;
+    }
+    flush();  // what the CPU path has batched draws first
+    Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
+    if (!ct) return true;
+    const bool depthOnColor = s.useDepth && s.depthStride &&
+                              depthOverlapsColor(*ct, s.depthAddr, s.depthStride, s.scissor[3] + 1);
+    Target* dt = s.useDepth && !depthOnColor ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1)
+                                             : nullptr;
+    const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
+    std::string err;
+    const Program* prog = programs_.getHw(gpuDraw_.key, s.fs, &err);
+    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
+    if (!prog) {
+        noteError(err);
+        return true;
+    }
+    fb_.bindDraw(ct, dt);
+    state_.apply(s, *prog, 0, 0);
+    gpu_.draw(gpuDraw_, *prog);
+    ++stats_.glDrawCalls;
+    // Without CPU geometry the drawn area is bounded by the scissor.
+    const Rect drawn{s.scissor[0], s.scissor[1], s.scissor[2], s.scissor[3]};
+    const bool colorWrites = s.fs.dstRead != shadergen::DstRead::None || s.ff.colorMask[0] || s.ff.colorMask[1] ||
+                             s.ff.colorMask[2] || s.ff.colorMask[3];
+    if (colorWrites) ct->dirty.add(drawn);
+    if (dt && s.ff.depthMask) dt->dirty.add(drawn);
+    return true;
+}
+
+bool GlRendererImpl::batchOverlaps(u32 begin, u32 end) const {
+    const DrawSetup& s = batchSetup_;
+    const u32 bpp = s.colorFormat == GE_FORMAT_8888 ? 4 : 2;
+    const u32 cEnd = s.colorAddr + u32(s.scissor[3] + 1) * s.colorStride * bpp;
+    if (s.colorAddr < end && cEnd > begin) return true;
+    if (s.useDepth) {
+        const u32 dEnd = s.depthAddr + u32(s.scissor[3] + 1) * s.depthStride * 2;
+        if (s.depthAddr < end && dEnd > begin) return true;
+    }
+    return false;
+}
+
+void GlRendererImpl::flush() {
+    if (geo_.empty()) return;
+    const DrawSetup& s = batchSetup_;
+    const std::vector<GlVertex>& verts = geo_.tris;
+    const std::vector<PrimBounds>& bounds = geo_.triBounds;
+    const int perPrim = 3;
+    if (verts.empty()) {
+        geo_.clear();
+        return;
+    }
+    Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
+    // A depth buffer sharing bytes with the colour target is not used: taking its target would
+    // claim those bytes and free the colour target this draw binds (targets never alias,
+    // framebuffer_manager.h; found by fuzz_replay_gl). PPSSPP likewise drops a depth buffer at
+    // the colour buffer's address (FramebufferManagerCommon: "the game doesn't care about Z").
+    const bool depthOnColor = ct && s.useDepth && s.depthStride &&
+                              depthOverlapsColor(*ct, s.depthAddr, s.depthStride, s.scissor[3] + 1);
+    Target* dt = s.useDepth && !depthOnColor ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1)
+                                             : nullptr;
+    if (!ct) {
+        geo_.clear();
+        return;
+    }
+    const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
+    std::string err;
+    const Program* prog = programs_.get(s.vs, s.fs, &err);
+    if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
+    if (!prog) {
+        noteError(err);
+        geo_.clear();
+        return;
+    }
+    fb_.bindDraw(ct, dt);
+    const bool dstTex = s.fs.dstRead == shadergen::DstRead::Texture;
+    GLuint dstColor = 0, dstDepth = 0;
+    if (dstTex) {
+        dstColor = useBarrier_ ? ct->tex : snapColor_;
+        dstDepth = useBarrier_ ? (dt ? dt->tex : 0) : snapDepth_;
+    }
+    state_.apply(s, *prog, dstColor, dstDepth);
+
+    gl_.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(verts.size() * sizeof(GlVertex)), verts.data(), GL_STREAM_DRAW);
+    if (caps_.exactInterp) {
+        if (geo_.records.size() * 3 != verts.size()) {
+            noteError("internal: triangle records out of step with vertices");
+            geo_.clear();
+            return;
+        }
+        gl_.BindBuffer(GL_TEXTURE_BUFFER, recordBuf_);
+        gl_.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(geo_.records.size() * sizeof(TriRecord)),
+                       geo_.records.data(), GL_STREAM_DRAW);
+        gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
+        gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
+        gl_.ActiveTexture(GL_TEXTURE0);
+    }
+    const GLenum mode = GL_TRIANGLES;
+    Rect drawn;
+    const Rect sc{s.scissor[0], s.scissor[1], s.scissor[2], s.scissor[3]};
+    auto clipRect = [&](const PrimBounds& b) {
+        Rect r{std::max(b.x0, sc.x0), std::max(b.y0, sc.y0), std::min(b.x1, sc.x1), std::min(b.y1, sc.y1)};
+        return r;
+    };
+    if (!dstTex) {
+        gl_.DrawArrays(mode, 0, GLsizei(verts.size()));
+        ++stats_.glDrawCalls;
+        for (const PrimBounds& b : bounds) drawn.add(clipRect(b));
+    } else {
+        // Groups of primitives that never touch the same pixel: each reads the destination
+        // as it was before the group, which is exact because no member sees another's write.
+        const size_t n = bounds.size();
+        size_t first = 0;
+        std::vector<size_t> members;
+        while (first < n) {
+            members.clear();
+            Rect area;
+            size_t end = first;
+            for (; end < n; ++end) {
+                const PrimBounds& b = bounds[end];
+                bool clash = false;
+                if (!(b.joinPrev && end > first))
+                    for (size_t m : members)
+                        if (overlaps(bounds[m], b)) {
+                            clash = true;
+                            break;
+                        }
+                if (clash || members.size() >= 256) break;
+                members.push_back(end);
+                area.add(clipRect(b));
+            }
+            if (!area.empty()) {
+                if (useBarrier_) {
+                    gl_.TextureBarrier();
+                } else {
+                    // Copy the group's area of the target (and depth) into the snapshot.
+                    gl_.BindFramebuffer(GL_READ_FRAMEBUFFER, fb_.drawFbo());
+                    gl_.BindFramebuffer(GL_DRAW_FRAMEBUFFER, snapFbo_);
+                    gl_.Disable(GL_SCISSOR_TEST);
+                    GLbitfield mask = GL_COLOR_BUFFER_BIT;
+                    if (s.fs.depthRead == shadergen::DepthRead::Texture && dt) mask |= GL_DEPTH_BUFFER_BIT;
+                    const int n = scale_;
+                    gl_.BlitFramebuffer(area.x0 * n, area.y0 * n, (area.x1 + 1) * n, (area.y1 + 1) * n, area.x0 * n,
+                                        area.y0 * n, (area.x1 + 1) * n, (area.y1 + 1) * n, mask, GL_NEAREST);
+                    gl_.Enable(GL_SCISSOR_TEST);
+                    gl_.BindFramebuffer(GL_FRAMEBUFFER, fb_.drawFbo());
+                }
+                gl_.DrawArrays(mode, GLint(first * size_t(perPrim)), GLsizei((end - first) * size_t(perPrim)));
+                ++stats_.glDrawCalls;
+                drawn.add(area);
+            }
+            first = end;
+        }
+    }
+    // Dirty tracking for write-back (conservative bounds, clipped to the scissor).
+    const bool colorWrites = s.fs.dstRead != shadergen::DstRead::None || s.ff.colorMask[0] || s.ff.colorMask[1] ||
+                             s.ff.colorMask[2] || s.ff.colorMask[3];
+    if (colorWrites) ct->dirty.add(drawn);
+    if (dt && s.ff.depthMask) dt->dirty.add(drawn);
+    const size_t drawnTriangles = geo_.triangles();
+    stats_.batchPeak = std::max<u64>(stats_.batchPeak, drawnTriangles);
+    geo_.clear();
+    geo_.trim(drawnTriangles);
+    drawGeo_.trim(drawnTriangles);
+}
+
+}  // namespace ge::gl
