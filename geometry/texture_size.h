@@ -2,7 +2,7 @@
 // The texture size rule both backends share: the size the GE scales texture coordinates by, and
 // the bounds of the texel index. The software model (geometry/transform.cpp and assembly.cpp for
 // through mode's texel coordinates, softmodel/sampler.cpp TexLevel::setSize, the level of detail's
-// RasterParams::texW0) and the GL translator (the same geometry, translator/gl_renderer.cpp
+// RasterParams::texW0) and the GL translator (the same geometry, translator/gl_batch.cpp
 // u_texLevels.yz, the samplers shadergen/shader_gen.cpp generates for exact and hardware mode)
 // take it from here, so the two cannot drift apart. Header only.
 //

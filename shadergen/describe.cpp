@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Human-readable key descriptions (style-anchors §7.7): the first comment line of every generated
+// Human-readable key descriptions: the first comment line of every generated
 // shader, shown in dumps, failing tests and logs.
 #include <string>
 

@@ -146,7 +146,7 @@ void canonicalize(HwVsKey& k);
 std::string describe(const HwVsKey& k);
 
 // The key of a draw (`through` from VTYPE bit 23). `texture`: texturing on (TME and not clear
-// mode); `fog`: FGE (VertexSettings::fog; ignored in through mode). Canonicalised.
+// mode); `fog`: FGE (as the draw front end reads it: ignored in through mode). Canonicalised.
 HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog);
 
 // Bytes per vertex (one vertex times its morph copies, ge-rules.md §5.2) of a key.
@@ -186,7 +186,7 @@ struct HwVsUniforms {
     s32 lightAmbient[16];
     s32 lightDiffuse[16];
     s32 lightSpecular[16];
-    // Added for the geometry shader (VertexPipeline::culled, VertexSettings::fromState):
+    // Added for the geometry shader (geo::DrawFrontEnd::culled, geometry/draw_front_end.cpp):
     s32 cull[4];                          // BCE on and not clear mode, CULL (1: counter-clockwise
                                           // culled), 0, 0
     // Added for through mode (geometry/transform.cpp transformVertex, makeTransformState):
@@ -212,7 +212,7 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
 //   key = hwVsKeyFromState(st, texture, fog);
 //   key.primKind = 0 / 1 / 2 for GE_PRIM_TRIANGLES / _TRIANGLE_STRIP / _TRIANGLE_FAN;
 //   program = VS(key) + GS(key) + FS; u_hw = hwVsUniformsFromState(st) (which fills `cull`:
-//   culling now follows BCE/CULL from the state, as VertexSettings::fromState); u_ndcScale;
+//   culling now follows BCE/CULL from the state, as the draw front end); u_ndcScale;
 //   draw with GL_TRIANGLES / GL_TRIANGLE_STRIP / GL_TRIANGLE_FAN from the strip's or fan's first
 //   vertex, with GL_CULL_FACE and GL_CLIP_DISTANCE0 disabled and the default provoking vertex
 //   convention. Transform feedback of the GS output (GL_TRIANGLES) is VertexPipeline's

@@ -182,7 +182,7 @@ HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog) {
     k.fog = fog;
     k.normalReverse = st.NREV_on();
     k.clipEnable = st.CLE_on();
-    // Flat in clear mode too, as VertexSettings::fromState (the fragment key must agree).
+    // Flat in clear mode too, as geo::rasterParamsFor (the fragment key must agree).
     k.flatShade = !(st.SHADE_gouraud() && !st.isClearMode());
     k.through = st.isThrough();
     canonicalize(k);
@@ -209,7 +209,7 @@ void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u) {
     u.fog[0] = ts.fogEnd, u.fog[1] = ts.fogSlope;
     u.fogFixed[0] = ts.fog ? ts.fogFixed : -1;
     u.matColor[0] = (st.MAC_rgb() & 0xFFFFFF) | (st.MAA_alpha() & 0xFF) << 24;
-    // GE culling as translator/vertex_pipeline.cpp VertexSettings::fromState (none in clear mode).
+    // GE culling as geometry/draw_front_end.cpp (none in clear mode).
     u.cull[0] = st.BCE_on() && !st.isClearMode() ? 1 : 0;
     u.cull[1] = st.CULL_ccw() ? 1 : 0;
     // Through mode's texel scaling (makeTransformState computes it in either mode).

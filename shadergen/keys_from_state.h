@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // From GE state to shader keys, uniform values and the fixed-function part of the pipeline.
-// This is the only place in shadergen/ that reads GeState (style-anchors §7.1, §7.8): it decides,
+// This is the only place in shadergen/ that reads GeState: it decides,
 // per draw, which parts of the GE pixel pipeline run in the shader and which in GL fixed
 // function; the translator only maps that decision to GL calls.
 #pragma once

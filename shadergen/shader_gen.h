@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// GLSL generation: pure functions (key, caps) → source (style-anchors §7.6). No GL headers, no
+// GLSL generation: pure functions (key, caps) → source. No GL headers, no
 // state reads. The first line after #version/#extension is a comment holding describe(key).
 //
 // Interface between the generated shaders and the translator:

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Shader keys: small POD descriptions of one GE pixel/vertex pipeline configuration, and the host
-// capabilities the generated GLSL may use (style-anchors §7.4–7.6).
+// capabilities the generated GLSL may use.
 //
 // Rules:
 //  - Keys are zero-initialised PODs compared and hashed byte-wise; every byte is a named field

@@ -138,11 +138,10 @@ gl::Geometry cpuGeometry(const GeState& st, const Scene& sc, const std::vector<u
     p.vtype = st.op(GE_CMD_VTYPE);
     p.vertexAddr = base;
     p.indexAddr = ibase;
-    const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
     gl::VertexPipeline vp;
     gl::Geometry g;
     std::string err;
-    EXPECT_TRUE(vp.processPrim(mem, st, p, vs, g, &err)) << err;
+    EXPECT_TRUE(vp.processPrim(mem, st, p, g, &err)) << err;
     return g;
 }
 
@@ -193,8 +192,7 @@ Result runScene(Harness* H, const Scene& sc, const GsEdit* edit = nullptr) {
     Result r;
     const GeState st = sceneState(sc);
     const std::vector<u8> bytes = vertexBytes(sc);
-    const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
-    sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
+    sg::HwVsKey key = sg::hwVsKeyFromState(st, st.TME_on() && !st.isClearMode(), st.FGE_on() && !st.isThrough());
     key.primKind = u8(sc.prim == GE_PRIM_TRIANGLE_STRIP ? 1 : (sc.prim == GE_PRIM_TRIANGLE_FAN ? 2 : 0));
     sg::canonicalize(key);
     sg::HwVsUniforms u;
@@ -616,8 +614,7 @@ TEST(GlHwClip, LinksWithTheFragmentShaders) {
         const sg::PipelineKeys keys = sg::keysFromState(st, flags, caps, false);
         std::string fs, log;
         ASSERT_TRUE(sg::generateFragmentShader(keys.fs, caps, fs, &log)) << log;
-        const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
-        sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
+            sg::HwVsKey key = sg::hwVsKeyFromState(st, st.TME_on() && !st.isClearMode(), st.FGE_on() && !st.isThrough());
         key.primKind = u8(i % 3);
         // Every other one as drivers without doubles get it (float divisions).
         const GsEdit noFp64{"#extension GL_ARB_gpu_shader_fp64 : enable\n",

@@ -160,11 +160,10 @@ gl::Geometry cpuGeometry(const GeState& st, const Scene& sc, const std::vector<u
     p.vtype = st.op(GE_CMD_VTYPE);
     p.vertexAddr = base;
     p.indexAddr = ibase;
-    const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
     gl::VertexPipeline vp;
     gl::Geometry g;
     std::string err;
-    EXPECT_TRUE(vp.processPrim(mem, st, p, vs, g, &err)) << err;
+    EXPECT_TRUE(vp.processPrim(mem, st, p, g, &err)) << err;
     return g;
 }
 
@@ -182,8 +181,7 @@ struct Result {
 bool same(float a, float b) { return (std::isnan(a) && std::isnan(b)) || a == b; }
 
 sg::HwVsKey sceneKey(const GeState& st, const Scene& sc) {
-    const gl::VertexSettings vs = gl::VertexSettings::fromState(st);
-    sg::HwVsKey key = sg::hwVsKeyFromState(st, vs.texture, vs.fog);
+    sg::HwVsKey key = sg::hwVsKeyFromState(st, st.TME_on() && !st.isClearMode(), st.FGE_on() && !st.isThrough());
     key.primKind = u8(sc.prim == GE_PRIM_TRIANGLE_STRIP ? 1 : (sc.prim == GE_PRIM_TRIANGLE_FAN ? 2 : 0));
     sg::canonicalize(key);
     return key;

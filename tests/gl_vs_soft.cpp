@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Differential tests (style-anchors §7.12): the same display list through the GL translator and
+// Differential tests: the same display list through the GL translator and
 // the software model (the bit-accurate reference), comparing VRAM byte for byte.
 //
 // Through-mode scenes must match exactly. Transform-mode scenes share the software model's vertex

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Render targets as caches of emulated VRAM (style-anchors §8.7: VRAM is the source of truth).
+// Render targets as caches of emulated VRAM: VRAM is the source of truth.
 //
 // A colour target is (VRAM address, stride, format) ↔ an RGBA8UI texture whose row y is drawing
 // row y; it holds stored pixels (16-bit formats bit-replicated, i.e. what a GE read expands to).

@@ -108,14 +108,17 @@ bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& fl
 // false when it stays on the CPU path.
 bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     const GeState& st = *p.state;
-    const VertexSettings vs = vertexSettings(st);
     shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st);
     // The colours reaching the fragments only matter to the reference's skipped alpha test;
     // prepare() keeps the draws where that rule could fire on the CPU.
     flags.vertexAlphaFull = true;
     const bool dstTexture =
         shadergen::keysFromState(st, flags, caps_, opt_.baseline).fs.dstRead == shadergen::DstRead::Texture;
-    if (!gpu_.prepare(mem_, st, p, vs.texture, vs.fog, vs.cull, vs.cullCcw, dstTexture, gpuDraw_)) return false;
+    // Texturing and culling never in clear mode, fog only in transform mode (the front end's
+    // rules, geometry/draw_front_end.cpp).
+    const bool texture = st.TME_on() && !st.isClearMode(), fog = st.FGE_on() && !st.isThrough();
+    const bool cull = st.BCE_on() && !st.isClearMode();
+    if (!gpu_.prepare(mem_, st, p, texture, fog, cull, st.CULL_ccw(), dstTexture, gpuDraw_)) return false;
     // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
     pipeline_.keepOpenVertices(mem_, st, p);
     DrawSetup s;

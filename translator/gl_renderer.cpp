@@ -46,6 +46,7 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
     }
     std::memset(static_cast<void*>(&batchSetup_), 0, sizeof batchSetup_);
     pipeline_.setOutputLimit(kBatchTriangles, &GlRendererImpl::drawOutputFull, this);
+    pipeline_.setRecords(caps_.exactInterp != 0);
     gl_.GenVertexArrays(1, &vao_);
     gl_.GenBuffers(1, &vbo_);
     gl_.BindVertexArray(vao_);
@@ -131,7 +132,7 @@ void GlRendererImpl::drawPrim(const PrimPacket& p) {
     const GeState& st = *p.state;
     std::string err;
     startDraw(st, shadergen::DrawFlags::fromState(st));
-    if (!pipeline_.processPrim(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
+    if (!pipeline_.processPrim(mem_, st, p, drawGeo_, &err)) noteError(err);
     addDraw();
 }
 
@@ -140,7 +141,7 @@ void GlRendererImpl::drawPatch(const PatchPacket& p) {
     const GeState& st = *p.state;
     std::string err;
     startDraw(st, shadergen::DrawFlags::fromState(st));
-    if (!pipeline_.processPatch(mem_, st, p, vertexSettings(st), drawGeo_, &err)) noteError(err);
+    if (!pipeline_.processPatch(mem_, st, p, drawGeo_, &err)) noteError(err);
     addDraw();
 }
 
@@ -185,14 +186,8 @@ void GlRendererImpl::drawImmediate(const ImmPacket& p) {
     df.texture = (f >> 21) & 1;
     df.fog = (f >> 22) & 1;
     df.dither = (f >> 23) & 1;
-    VertexSettings vs = vertexSettings(st);
-    vs.gouraud = df.gouraud;
-    vs.cull = ((f >> 19) & 1) && !st.isClearMode();
-    vs.cullCcw = (f >> 20) & 1;
-    vs.texture = df.texture && !st.isClearMode();
-    vs.fog = df.fog && !st.isThrough();
     startDraw(st, df);
-    pipeline_.processImmediate(st, p, vs, drawGeo_);
+    pipeline_.processImmediate(st, p, drawGeo_);  // the geometry's own overrides: geo::immediateState
     addDraw();
 }
 
@@ -211,12 +206,6 @@ void GlRendererImpl::flushToMemory() {
     flush();
     fb_.flushAll();
     gl_.Finish();
-}
-
-VertexSettings GlRendererImpl::vertexSettings(const GeState& st) const {
-    VertexSettings vs = VertexSettings::fromState(st);
-    vs.records = caps_.exactInterp != 0;
-    return vs;
 }
 
 void GlRendererImpl::noteError(const std::string& e) {

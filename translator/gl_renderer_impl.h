@@ -74,7 +74,6 @@ private:
     void addDraw();
     static void drawOutputFull(void* self) { static_cast<GlRendererImpl*>(self)->addDraw(); }
     static constexpr size_t kBatchTriangles = kGlBatchTriangles;
-    VertexSettings vertexSettings(const GeState& st) const;
     void noteError(const std::string& e);
 
     // gl_batch.cpp

@@ -92,21 +92,6 @@ PrimBounds boundsOf(const GlVertex* v, int n) {
 
 }  // namespace
 
-VertexSettings VertexSettings::fromState(const GeState& st) {
-    VertexSettings vs;
-    vs.gouraud = st.SHADE_gouraud() && !st.isClearMode();  // clear mode draws flat (as the software model)
-    vs.cull = st.BCE_on() && !st.isClearMode();
-    vs.cullCcw = st.CULL_ccw();
-    vs.texture = st.TME_on() && !st.isClearMode();
-    vs.fog = st.FGE_on() && !st.isThrough();
-    // Scissor ∩ REGION2 (ge-rules.md §8.6).
-    vs.clip[0] = int(st.SCISSOR1_x());
-    vs.clip[1] = int(st.SCISSOR1_y());
-    vs.clip[2] = int(std::min(st.SCISSOR2_x(), st.REGION2_x()));
-    vs.clip[3] = int(std::min(st.SCISSOR2_y(), st.REGION2_y()));
-    return vs;
-}
-
 void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenVertex& b,
                                   const geo::ScreenVertex& c, const geo::ScreenVertex& prov, int joinPrev) {
     const geo::RasterParams& rp = frontEnd_.rasterParams();
@@ -302,22 +287,19 @@ void VertexPipeline::primitive(const geo::Primitive& p) {
     sink.flush();
 }
 
-bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
-                                 Geometry& out, std::string* err) {
-    records_ = vs.records;
+bool VertexPipeline::processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, Geometry& out,
+                                 std::string* err) {
     out_ = &out;
     return frontEnd_.prim(mem, st, p, *this, err);
 }
 
-bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
-                                  Geometry& out, std::string* err) {
-    records_ = vs.records;
+bool VertexPipeline::processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, Geometry& out,
+                                  std::string* err) {
     out_ = &out;
     return frontEnd_.patch(mem, st, p, *this, err);
 }
 
-void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out) {
-    records_ = vs.records;
+void VertexPipeline::processImmediate(const GeState& st, const ImmPacket& p, Geometry& out) {
     out_ = &out;
     frontEnd_.immediate(geo::immediateState(st, p.flags), p, *this);
 }

@@ -52,7 +52,7 @@ struct PrimBounds {
 struct Geometry {
     std::vector<GlVertex> tris;  // 3 per triangle
     std::vector<PrimBounds> triBounds;
-    std::vector<TriRecord> records;  // 1 per triangle when VertexSettings::records (exact interpolation)
+    std::vector<TriRecord> records;  // 1 per triangle with VertexPipeline::setRecords (exact interpolation)
     void clear() {
         tris.clear();
         triBounds.clear();
@@ -81,37 +81,26 @@ struct Geometry {
     static constexpr size_t kTrimFloor = 16384;  // GL triangles kept without question (6 MB exact)
 };
 
-// Per-draw switches (immediate-mode vertices override some, ge-rules.md §3.12).
-struct VertexSettings {
-    bool gouraud = true;
-    bool cull = false;     // BCE (never in clear mode)
-    bool cullCcw = false;  // CULL bit
-    bool texture = false;
-    bool fog = false;
-    int clip[4] = {0, 0, -1, -1};  // inclusive clip rectangle for lines/points (scissor ∩ region)
-    bool records = false;  // also build the per-triangle records of exact interpolation (tri_setup.h)
-    static VertexSettings fromState(const GeState& st);
-};
-
 // The GL backend's sink of the shared draw front end (geometry/draw_front_end.h): each primitive
 // becomes GL triangles in drawing coordinates.
 class VertexPipeline : private geo::PrimitiveSink {
 public:
     // Decodes and processes a PRIM draw into `out` (appending). Returns false + err on bad
     // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ge-rules.md §3.2).
-    bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, const VertexSettings& vs,
-                     Geometry& out, std::string* err);
+    bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, Geometry& out, std::string* err);
     // Tessellated patch (geometry/spline.h) through the same path.
-    bool processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, const VertexSettings& vs,
-                      Geometry& out, std::string* err);
+    bool processPatch(const Memory& mem, const GeState& st, const PatchPacket& p, Geometry& out, std::string* err);
     // A fresh triangle/strip/fan PRIM drawn elsewhere (the GPU vertex path): keeps what a PRIM
     // type 7 continuation after it needs (geo::DrawFrontEnd::keepOpenVertices).
     void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p) {
         frontEnd_.keepOpenVertices(mem, st, p);
     }
     // Immediate vertices, already in drawing coordinates; the AP2 flags of the packet override
-    // the state (geo::immediateState, ge-rules.md §3.12). Of `vs` only `records` counts.
-    void processImmediate(const GeState& st, const ImmPacket& p, const VertexSettings& vs, Geometry& out);
+    // the state (geo::immediateState, ge-rules.md §3.12).
+    void processImmediate(const GeState& st, const ImmPacket& p, Geometry& out);
+    // Exact interpolation: each GL triangle also carries the software rasteriser's setup
+    // (Geometry::records, tri_setup.h).
+    void setRecords(bool on) { records_ = on; }
     // After a process* call: whether every primary colour of its primitives that reaches a
     // fragment has alpha 255 (geo::DrawFrontEnd::drawAlphaFull).
     bool drawAlphaFull() const { return frontEnd_.drawAlphaFull(); }
@@ -161,9 +150,8 @@ private:
     }
 
     geo::DrawFrontEnd frontEnd_;
-    // Per-draw context (valid during one process* call).
     bool records_ = false;
-    Geometry* out_ = nullptr;
+    Geometry* out_ = nullptr;  // during one process* call
     u64 glTriangles_ = 0, hostPixels_ = 0;
     size_t outLimit_ = ~size_t(0);
     void (*outFull_)(void*) = nullptr;

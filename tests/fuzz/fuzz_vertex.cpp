@@ -155,8 +155,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 #ifdef GE2GL_HAVE_GL
         // The GL translator's vertex pipeline, twice: the second as a PRIM type 7 continuation.
         gl::VertexPipeline pipeline;
-        gl::VertexSettings vs = gl::VertexSettings::fromState(st);
-        vs.records = (flags >> 5) & 1;
+        pipeline.setRecords((flags >> 5) & 1);
         PrimPacket p;
         p.state = &st;
         p.prim = prim;
@@ -166,9 +165,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         p.indexAddr = iaddr;
         if (count) {
             gl::Geometry geo;
-            pipeline.processPrim(mem, st, p, vs, geo, &err);
+            pipeline.processPrim(mem, st, p, geo, &err);
             p.continuation = true;
-            pipeline.processPrim(mem, st, p, vs, geo, &err);
+            pipeline.processPrim(mem, st, p, geo, &err);
             sum += geo.tris.size() + geo.records.size();
         }
 #endif
