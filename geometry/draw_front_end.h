@@ -143,6 +143,7 @@ private:
     // Per-draw context.
     PrimitiveSink* sink_ = nullptr;
     TransformState ts_;
+    MatrixFold fold_;  // the last draw's matrix products (makeTransformState)
     RasterParams rp_;
     bool cull_ = false, cullClockwise_ = false;
     bool alphaFull_ = true;

@@ -55,7 +55,7 @@ void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
         out[r] = (geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1])) + (geTerm(m[8 + r], p[2]) + m[12 + r]);
 }
 
-TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal) {
+TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold) {
     TransformState ts;
     ts.through = (vtype >> 23) & 1;
     ts.hasColor = hasColor;
@@ -90,7 +90,12 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     }
     ts.combinedClip = !needWorldPos;
     ts.worldToClip = needWorldPos;
-    {
+    const bool reuse = fold && fold->valid && !std::memcmp(fold->world, ts.world, sizeof ts.world) &&
+                       !std::memcmp(fold->view, ts.view, sizeof ts.view) && !std::memcmp(fold->proj, ts.proj, sizeof ts.proj);
+    if (reuse) {
+        std::memcpy(ts.worldViewProj, fold->worldViewProj, sizeof ts.worldViewProj);
+        std::memcpy(ts.viewProj, fold->viewProj, sizeof ts.viewProj);
+    } else {
         float w4[16], v4[16], wv[16];
         auto to4x4 = [](const float* m, float* o) {
             for (int c = 0; c < 4; ++c) {
@@ -110,6 +115,14 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
         mul4(w4, v4, wv);
         mul4(wv, ts.proj, ts.worldViewProj);
         mul4(v4, ts.proj, ts.viewProj);
+        if (fold) {
+            std::memcpy(fold->world, ts.world, sizeof ts.world);
+            std::memcpy(fold->view, ts.view, sizeof ts.view);
+            std::memcpy(fold->proj, ts.proj, sizeof ts.proj);
+            std::memcpy(fold->worldViewProj, ts.worldViewProj, sizeof ts.worldViewProj);
+            std::memcpy(fold->viewProj, ts.viewProj, sizeof ts.viewProj);
+            fold->valid = true;
+        }
     }
 
     const u32 map = st.TMAP_mode();

@@ -70,7 +70,17 @@ struct TransformState {
 // `hasNormal` whether the decoded vertices hold a normal: always for PRIM vertices (the format's,
 // or the vertex unit's latched one, GeState::latchNormal), for patches when the format has one or
 // tessellation generates them. Without, the normal is (0, 0, 1).
-TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal);
+// The per-draw matrix products (world·view·proj, view·proj) of the last call that passed it, with
+// the matrices they came from: a caller making transform states draw after draw (the draw front
+// end) passes one, and the products are reused while the three matrices stay the same — which
+// they do for most consecutive draws. The result is the same either way.
+struct MatrixFold {
+    float world[12] = {}, view[12] = {}, proj[16] = {};
+    float worldViewProj[16] = {}, viewProj[16] = {};
+    bool valid = false;
+};
+TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal,
+                                  MatrixFold* fold = nullptr);
 
 // Processes one decoded vertex (morphing and skinning already applied) into `out`, including the
 // screen mapping and the range flags.

@@ -97,7 +97,9 @@ u32 GeState::textureBufWidth(int level) const {
     return w ? w : a;
 }
 
-VertexLayout VertexLayout::fromVtype(u32 vtype) {
+namespace {
+
+VertexLayout computeLayout(u32 vtype) {
     static constexpr u8 tcSize[4] = {0, 2, 4, 8}, tcAlign[4] = {1, 1, 2, 4};
     static constexpr u8 colSize[8] = {0, 0, 0, 0, 2, 2, 2, 4}, colAlign[8] = {1, 1, 1, 1, 2, 2, 2, 4};
     static constexpr u8 nrmSize[4] = {0, 3, 6, 12}, nrmAlign[4] = {1, 1, 2, 4};
@@ -123,6 +125,23 @@ VertexLayout VertexLayout::fromVtype(u32 vtype) {
     l.size = u8((off + maxAlign - 1) & ~u32(maxAlign - 1));
     l.align = maxAlign;
     return l;
+}
+
+// The layout depends on 14 bits of VTYPE (TT, CT, NT, VT, WT: bits 0–10; the weight count: 14–16); every reader of a draw asks for it, so all 16,384 are made once, immutable.
+u32 layoutIndex(u32 vtype) { return (vtype & 0x7FF) | ((vtype >> 3) & 0x3800u); }
+
+}  // namespace
+
+VertexLayout VertexLayout::fromVtype(u32 vtype) {
+    static const std::vector<VertexLayout> table = [] {
+        std::vector<VertexLayout> t(1u << 14);
+        for (u32 i = 0; i < t.size(); ++i) {
+            const u32 vt = (i & 0x7FF) | ((i & 0x3800u) << 3);
+            t[i] = computeLayout(vt);
+        }
+        return t;
+    }();
+    return table[layoutIndex(vtype)];
 }
 
 u32 GeState::vertexSize() const { return VertexLayout::fromVtype(regs[GE_CMD_VTYPE]).size; }
