@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <mutex>
 #include <new>
+#include <vector>
 
 namespace ge {
 
@@ -41,6 +43,27 @@ void rezero(u8* p, size_t size) {
     if (madvise(p, pageRound(size), MADV_DONTNEED) != 0) std::memset(p, 0, size);
 }
 
+// Zeroes the resident pages of a mapping made by mapZeroed and leaves them resident; pages never
+// touched stay unmapped (mincore tells which are which).
+void zeroResident(u8* p, size_t size) {
+    const size_t page = pageSize(), pages = pageRound(size) / page;
+    std::vector<unsigned char> resident(pages);
+    if (mincore(p, pages * page, resident.data()) != 0) {
+        std::memset(p, 0, size);
+        return;
+    }
+    for (size_t i = 0; i < pages;) {
+        if (!(resident[i] & 1)) {
+            ++i;
+            continue;
+        }
+        size_t j = i;
+        while (j < pages && (resident[j] & 1)) ++j;
+        std::memset(p + i * page, 0, std::min(j * page, size) - i * page);
+        i = j;
+    }
+}
+
 }  // namespace
 
 Memory::Memory(u32 ramSize) : ramSize_(ramSize) {
@@ -72,10 +95,10 @@ Memory::~Memory() {
 
 void Memory::clear() {
     if (ram_ && ramSize_) {
-        if (ownsRam_) rezero(ram_, ramSize_);
+        if (ownsRam_) keepPages_ ? zeroResident(ram_, ramSize_) : rezero(ram_, ramSize_);
         else std::memset(ram_, 0, ramSize_);
     }
-    if (ownsVram_) rezero(vram_, kVramSize);
+    if (ownsVram_) keepPages_ ? zeroResident(vram_, kVramSize) : rezero(vram_, kVramSize);
     else std::memset(vram_, 0, kVramSize);
     std::memset(scratch_, 0, sizeof scratch_);
     edramTrans_ = 0x400;

@@ -44,6 +44,11 @@ public:
     // (cost proportional to the pages touched, not to the address space); host-owned buffers
     // are zero-filled.
     void clear();
+    // With `keep`, clear() zeroes the owned pages a replay touched in place instead of handing them
+    // back: the next replay writes the same pages without a page fault each, as an emulator's
+    // memory, allocated once, never faults again. `ge2gl bench --warm` (steady state) uses it; the
+    // pages stay resident until the Memory is destroyed.
+    void keepPagesOnClear(bool keep) { keepPages_ = keep; }
 
     static u32 normalize(u32 addr) { return addr & 0x0FFFFFFF; }
     static bool isVram(u32 addr) {
@@ -109,6 +114,7 @@ private:
     static const u16* mirror3Inverse(u32 edramTrans);
 
     bool ownsRam_ = false, ownsVram_ = false;  // anonymous mappings to munmap
+    bool keepPages_ = false;                   // keepPagesOnClear
     u8* ram_ = nullptr;
     u8* vram_ = nullptr;
     u32 ramSize_ = 0;

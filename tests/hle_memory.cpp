@@ -119,6 +119,21 @@ TEST(MemoryStorage, ClearZeroesAgainAndResetsState) {
     EXPECT_EQ(mem.readMirrored(Memory::kVramBase + 0x600000 + mem.linearToMirror(0, 3)), 0x5A);
 }
 
+// keepPagesOnClear (ge2gl bench --warm): clear() zeroes what a replay wrote in place, so the
+// pages stay resident for the next replay, and reads give zero as after a plain clear().
+TEST(MemoryStorage, ClearCanKeepTheTouchedPagesResident) {
+    Memory mem;
+    mem.keepPagesOnClear(true);
+    const u32 filled = 8 * kMiB;
+    ASSERT_TRUE(mem.fill(Memory::kRamBase + 16 * kMiB, 0x77, filled));
+    for (u32 i = 0; i < Memory::kVramSize; i += 4096) mem.write8(Memory::kVramBase + i + 5, 0x55);
+    const u64 dirty = residentBytes();
+    mem.clear();
+    EXPECT_GT(residentBytes() + 2 * kMiB, dirty) << "clear() gave the written pages back";
+    for (u32 i = 0; i < filled; i += 512) ASSERT_EQ(mem.read8(Memory::kRamBase + 16 * kMiB + i), 0) << i;
+    for (u32 i = 0; i < Memory::kVramSize; ++i) ASSERT_EQ(mem.vram()[i], 0) << i;
+}
+
 TEST(MemoryStorage, HostAccessRunningOffTheRegionFaults) {
     // Guard pages after RAM and VRAM (and before them): a backend bug that writes past what
     // ptr() granted crashes at once instead of corrupting a neighbour.

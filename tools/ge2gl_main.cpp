@@ -196,6 +196,8 @@ int cmdBench(const std::vector<std::string>& files, const tools::RenderOptions& 
     std::printf("\n");
     std::vector<double> medians, perDraw;
     Memory mem;  // one emulated memory for every run, cleared before each (Memory::clear)
+    // --warm measures an emulator's next frame: its memory stays resident between frames.
+    mem.keepPagesOnClear(warm);
     tools::RenderOptions engineOnly = opt;
     engineOnly.backend = "null";
     auto median = [](std::vector<double> v) {
@@ -385,7 +387,7 @@ struct Cli {
         bench->add_flag("--null-gl", nullGl, "GL: replay with a GL whose calls do nothing (same as --context null)");
         bench->add_flag("--warm", warm,
                         "one backend per dump for every run, after an untimed first run: the steady-state cost of a "
-                        "frame (textures decoded, programs compiled), as in an emulator");
+                        "frame (textures decoded, programs compiled, guest memory pages kept resident), as in an emulator");
         addBackendOpts(bench);
         addDrawSelectOpts(bench);
     }
