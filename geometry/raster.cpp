@@ -55,7 +55,7 @@ inline float interpolateF(float a, float b, float c, float w0, float w1, float w
 // Colours: rounded to nearest (the SSE conversion cvtps2dq, round-half-even), then kept to 0–255.
 inline u8 interpolateColor(int a, int b, int c, float w0, float w1, float w2, float recip) {
     const float v = interpolateF(float(a), float(b), float(c), w0, w1, w2, recip);
-    const float r = std::nearbyint(v);  // default rounding mode: to nearest, ties to even
+    const float r = roundHalfEven(v);
     return u8(r <= 0.0f ? 0 : (r >= 255.0f ? 255 : int(r)));
 }
 
@@ -333,7 +333,7 @@ struct TriangleWalk {
             // where these roundings decide; an integer depth plane and float with truncation
             // both lose against the references (docs/accuracy.md).
             const float zf = interpolateF(oz[0], oz[1], oz[2], fw0, fw1, fw2, wsumRecip);
-            const float zr = std::nearbyint(zf);  // default rounding mode: nearest, ties to even
+            const float zr = roundHalfEven(zf);
             f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));
         }
         if (same.color) {

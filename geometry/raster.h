@@ -27,12 +27,24 @@
 // translator's exact mode takes its triangle and rectangle setup (the block at the end) and the
 // fragments of lines and points, so the two cover the same pixels with the same attributes.
 #pragma once
+#include <cmath>
 #include <cstddef>
 
 #include "geometry/fragment.h"
 #include "hle/types.h"
 
 namespace ge::geo {
+
+// Round to nearest, ties to even, as std::nearbyint in the default rounding mode (and as the
+// reference's cvtps2dq) — without the library call baseline x86-64 makes for it (no SSE4.1
+// roundss): adding and subtracting 1.5·2^23 leaves the integer part rounded that way for
+// |x| < 2^22 (the project builds with -ffp-contract=off and without -ffast-math, so the two
+// additions stay). The sign of a zero result may differ from nearbyint's; every caller converts
+// to an integer.
+inline float roundHalfEven(float x) {
+    if (!(std::fabs(x) < 4194304.0f)) return std::nearbyint(x);  // large, infinite or NaN
+    return (x + 12582912.0f) - 12582912.0f;
+}
 
 // A vertex in drawing coordinates, ready to rasterise.
 struct ScreenVertex {

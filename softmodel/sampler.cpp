@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/raster.h"
 #include "geometry/texture_size.h"
 
 namespace ge::soft {
@@ -94,7 +95,7 @@ inline s64 texelFixed(float f) {
 // Jit_GetTexelCoordsQuad vs Jit_GetTexelCoords). Out of range and NaN give INT_MIN as the
 // instruction's "integer indefinite" value.
 inline s64 texelFixedRound(float f) {
-    return (f >= -2147483648.0f && f < 2147483648.0f) ? s64(s32(std::nearbyint(f))) : s64(INT32_MIN);
+    return (f >= -2147483648.0f && f < 2147483648.0f) ? s64(s32(geo::roundHalfEven(f))) : s64(INT32_MIN);
 }
 
 template <bool CLAMP>
