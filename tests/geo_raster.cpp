@@ -534,3 +534,26 @@ TEST(GeoRaster, BandsPartitionPixelsExactly) {
     for (const Fragment& f : parts) b.insert(key(f));
     EXPECT_TRUE(a == b);
 }
+
+// roundHalfEven is std::nearbyint in the default rounding mode for every value a caller converts
+// to an integer: ties to even on both signs, the 2^22 boundary, huge values, infinities, and a
+// million random floats over ±2^24.
+TEST(RoundHalfEven, EqualsNearbyint) {
+    auto same = [](float x) {
+        const float a = roundHalfEven(x), b = std::nearbyint(x);
+        return (std::isnan(a) && std::isnan(b)) || a == b;
+    };
+    for (float x : {0.5f, 1.5f, 2.5f, -0.5f, -1.5f, -2.5f, 254.5f, 255.5f, 65534.5f, 4194303.5f, 4194304.0f,
+                    4194304.5f, -4194303.5f, 8388607.5f, 1e30f, -1e30f, 0.0f, -0.0f, 0.49999997f})
+        EXPECT_TRUE(same(x)) << x;
+    EXPECT_TRUE(same(INFINITY));
+    EXPECT_TRUE(same(-INFINITY));
+    EXPECT_TRUE(std::isnan(roundHalfEven(NAN)));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> dist(-16777216.0f, 16777216.0f);
+    std::uniform_real_distribution<float> small(-300.0f, 300.0f);
+    for (int i = 0; i < 1000000; ++i) {
+        const float x = (i & 1) ? dist(rng) : small(rng);
+        ASSERT_TRUE(same(x)) << x;
+    }
+}
