@@ -210,7 +210,8 @@ int rowsReachable(u32 pixels, u32 stride) {
 
 }  // namespace
 
-PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled, bool vertexAlphaFull) {
+PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, const geo::AccuracyProfile& acc,
+                           bool textureEnabled, bool vertexAlphaFull) {
     PixelState ps;
     auto im = std::make_shared<Impl>();
     const GeBufferFormat fmt = st.framebufFormat();
@@ -256,9 +257,10 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->alphaTest = st.ATE_on() && !clear && im->alphaFunc != CMP_ALWAYS;
     // The reference renderer's skipped alpha test for CLUT textures (geometry/reference_rules.h,
     // which the GL translator's shader keys apply too).
-    if (im->alphaTest && geo::referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull)) im->alphaTest = false;
+    if (acc.clutSkipsAlphaTest && im->alphaTest && geo::referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull))
+        im->alphaTest = false;
     // The reference renderer's implicit "alpha != 0" test for source-alpha blending (ditto).
-    if (!clear && geo::referenceDropsZeroAlpha(st, im->texture)) {
+    if (acc.implicitAlphaNonZeroTest && !clear && geo::referenceDropsZeroAlpha(st, im->texture)) {
         im->alphaTest = true;
         im->alphaFunc = CMP_NOTEQUAL;
         im->alphaMask = 0xFF;
