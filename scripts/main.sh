@@ -22,6 +22,6 @@ echo "== GL translator vs expected images =="
 ./build/ge2gl compare "${dumps[@]}" --backend gl --ref-dir dumps/expected --diff-dir out/diff-gl || true
 if [ -d ../shared/frametests/dumps ]; then
   echo "== software model vs frametest references (../shared/frametests) =="
-  ./build/ge2gl compare ../shared/frametests/dumps/* --backend soft --ref-dir ../shared/frametests/ref --json out/frametests-soft.json || true
+  ./build/ge2gl compare ../shared/frametests/dumps/* --backend soft --accuracy ppsspp --ref-dir ../shared/frametests/ref --json out/frametests-soft.json || true
 fi
 echo "main: images in out/"
