@@ -171,6 +171,7 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
         h->backend = cfg->backend;
         const ge::geo::AccuracyProfile profile =
             accuracy == GE2GL_ACCURACY_PPSSPP ? ge::geo::AccuracyProfile::ppsspp() : ge::geo::AccuracyProfile::psp();
+        h->accuracy = profile;
         if (ge2gl_status st = makeBackend(cfg, glMode, scale, has12, profile, *h); st != GE2GL_OK) return st;
         // The engine draws through the gate, which leaves the handle's lock while the backend works.
         if (ge::Renderer* r = h->drawBackend.renderer.get()) h->gate = std::make_unique<RenderGate>(h.get(), r);

@@ -632,7 +632,7 @@ int runFuzzCommand(const FuzzOptions& o) {
     }
     const double rate = s.seconds > 0 ? double(s.cases) / s.seconds : 0;
     std::printf("fuzz %s vs %s, seeds %llu-%llu: %llu cases, %llu divergences, %llu errors, %.2f s, %.1f cases/s\n",
-                o.backend.c_str(), o.refBackend.c_str(), (unsigned long long)o.seed,
+                sideName(o, 0).c_str(), sideName(o, 1).c_str(), (unsigned long long)o.seed,
                 (unsigned long long)(o.seed + (o.count ? o.count - 1 : 0)), (unsigned long long)s.cases,
                 (unsigned long long)s.divergences, (unsigned long long)s.errors, s.seconds, rate);
     if (!o.jsonPath.empty()) {
