@@ -66,14 +66,15 @@ std::vector<SplineSpan> splineSpans(int count, int knotType, bool openKnotQuirk)
         s.r42 = 1.0f / (U[p + 5] - U[p + 3]);
         s.r32 = 1.0f / (U[p + 4] - U[p + 3]);
     }
-    // A single patch open at both ends (AccuracyProfile::splineOpenKnotQuirk): the reference sets 1/(U[5]−U[2]) for the open end (1/2,
-    // right when the start is closed) after the open start's value (1, the true one), so its
-    // weights are not the Bernstein ones: at t = 1/2 they are (1/8, 1/2, 1/4, 1/8) instead of
-    // (1/8, 3/8, 3/8, 1/8). Still a partition of unity with exact ends, so a flat patch stays
-    // flat, but its tessellated vertices sit at other places: GachiTora draws its button and
-    // speech-bubble text as such 4x4 splines, and only these weights reproduce the reference's
-    // bilinear texel fractions there (docs/accuracy.md, "Reference quirks"). Without the quirk
-    // the manual's knot vector (§5.2.1) gives the Bernstein weights.
+    // A single patch open at both ends, under AccuracyProfile::splineOpenKnotQuirk: the reference
+    // sets 1/(U[5]−U[2]) for the open end (1/2, right when the start is closed) after the open
+    // start's value (1, the true one), so its weights are not the Bernstein ones: at t = 1/2 they
+    // are (1/8, 1/2, 1/4, 1/8) instead of (1/8, 3/8, 3/8, 1/8). Still a partition of unity with
+    // exact ends, so a flat patch stays flat, but its tessellated vertices sit at other places:
+    // GachiTora draws its button and speech-bubble text as such 4x4 splines, and only these
+    // weights reproduce the reference's bilinear texel fractions there (docs/accuracy.md,
+    // "Reference quirks"). Without the quirk the manual's knot vector (§5.2.1) gives the
+    // Bernstein weights, as on a PSP.
     if (openKnotQuirk && count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
     return spans;
 }

@@ -438,8 +438,8 @@ bool fuzzCompare(const dump::Dump& d, const FuzzOptions& o, FuzzSides* sides, bo
     if (n) {
         const bool rgb = fmt == GE_FORMAT_565 || ((fa ^ fb) & (fmt == GE_FORMAT_8888 ? 0x00FFFFFFu : fmt == GE_FORMAT_5551 ? 0x7FFFu : 0x0FFFu));
         cause = "colour (" + std::string(bufferFormatName(fmt)) + (rgb ? ", RGB" : ", alpha/stencil only") + ") at (" +
-                std::to_string(fx) + "," + std::to_string(fy) + "): " + sideName(o, 0) + " " + hex(fa, bpp * 2) + " vs " +
-                sideName(o, 1) + " " + hex(fb, bpp * 2) + ", " + std::to_string(n) + " pixels differ";
+                std::to_string(fx) + "," + std::to_string(fy) + "): " + sideName(o, 0) + " " + hex(fa, bpp * 2) +
+                " vs " + sideName(o, 1) + " " + hex(fb, bpp * 2) + ", " + std::to_string(n) + " pixels differ";
         if (mse >= 0) {
             char buf[64];
             std::snprintf(buf, sizeof buf, ", MSE %.4f > %.4f", mse, o.maxMse);
