@@ -51,11 +51,17 @@ struct AccuracyProfile {
     // the odd pixel of a pair (Rasterizer.cpp DrawRectangle), as it still does for the strip and
     // fan quads it draws as rectangles in both profiles. No frametest moved.
     bool spriteFarEdgeExcluded = false;
+    // Bilinear filtering takes the texel position (8 fraction bits) truncated toward zero, as
+    // nearest filtering does (pspautotests filtering/precisionlinear2d and 3d; docs/conformance.md
+    // "What fails"). PPSSPP's x86 sampler JIT rounds it to nearest, ties to even (SamplerX86.cpp
+    // Jit_GetTexelCoordsQuad, CVTPS2DQ; softmodel/sampler.cpp texelFixedRound).
+    bool pspBilinearTruncation = false;
 
     static constexpr AccuracyProfile psp() {
         AccuracyProfile a;
         a.pspSpritePosition = true;
         a.spriteFarEdgeExcluded = true;
+        a.pspBilinearTruncation = true;
         return a;
     }
     static constexpr AccuracyProfile ppsspp() {

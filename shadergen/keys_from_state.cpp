@@ -62,10 +62,12 @@ void canonicalize(FsKey& k) {
         k.texFunc = k.texAlpha = k.texDouble = 0;
         k.texMagLinear = k.texMinLinear = k.texMip = k.texLodMode = 0;
         k.texClampU = k.texClampV = 0;
+        k.texLinearTrunc = 0;
     } else {
         if (k.texFunc > 4) k.texFunc = 4;  // 5–7 behave as ADD (ge-rules.md §3.8)
         // The level of detail only matters when it can change the filter or the level.
         if (k.texMip == 0 && k.texMinLinear == k.texMagLinear) k.texLodMode = 0;
+        if (!k.texMinLinear && !k.texMagLinear) k.texLinearTrunc = 0;  // no bilinear sample
     }
     if (!k.stencilTest) k.sopFail = k.sopZFail = k.sopZPass = 0;
     if (!k.blend) k.blendA = k.blendB = 0;
@@ -125,6 +127,7 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
             k.texLodMode = u8(lm == 3 ? 1 : lm);
             k.texClampU = st.TWRAP_uclamp() ? 1 : 0;
             k.texClampV = st.TWRAP_vclamp() ? 1 : 0;
+            k.texLinearTrunc = flags.accuracy.pspBilinearTruncation ? 1 : 0;
         }
         k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ge-rules.md §3.9)
         const geo::AccuracyProfile& acc = flags.accuracy;

@@ -153,7 +153,7 @@ ShadeFn pickShade(const Impl& im) {
     return table[(im.texture ? 8 : 0) | (im.blend ? 4 : 0) | (im.depthTest ? 2 : 0) | (full ? 1 : 0)];
 }
 
-void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache) {
+void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache, const geo::AccuracyProfile& acc) {
     Sampler& sm = im.sampler;
     LodParams& lp = sm.lod;
     const u32 mode = st.TLEVEL_mode();
@@ -183,6 +183,7 @@ void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache)
         auto data = cache.level(st, mem, l);
         sm.levels[l].texels = data->texels.data();
         sm.levels[l].setSize(st.TSIZE_wlog(l), st.TSIZE_hlog(l), int(data->width), int(data->height));
+        sm.levels[l].linearTruncates = acc.pspBilinearTruncation;
         im.levelData[l] = std::move(data);
     }
     sm.levelCount = last + 1;
@@ -236,7 +237,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
 
     // Texturing: never in clear mode (manual §19.6).
     im->texture = textureEnabled && !clear;
-    if (im->texture) setupTexture(*im, st, mem, cache);
+    if (im->texture) setupTexture(*im, st, mem, cache, acc);
 
     // Fog: off in through and clear mode (ge-rules.md §3.9, §8.4).
     im->fog = st.FGE_on() && !im->through && !clear;

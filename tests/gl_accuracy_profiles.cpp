@@ -74,6 +74,38 @@ TEST(AccuracyProfiles, NamesRoundTrip) {
     EXPECT_NE(p.zeroAreaTriangles, q.zeroAreaTriangles);
     EXPECT_NE(p.pspSpritePosition, q.pspSpritePosition);
     EXPECT_NE(p.spriteFarEdgeExcluded, q.spriteFarEdgeExcluded);
+    EXPECT_NE(p.pspBilinearTruncation, q.pspBilinearTruncation);
+}
+
+// pspBilinearTruncation: a 1x1 through-mode sprite over a 2-texel texture (red, green), bilinear,
+// clamped, from u = 143.7/256 texel, v = 1/2. Pixel 0 samples half a pixel (= half a texel) in:
+// the position with 8 fraction bits is 271.7, truncated 271 on a PSP (half a texel back: 143,
+// fraction 8/16: red and green 127), rounded 272 by PPSSPP (144, fraction 9/16: red 111, green
+// 143).
+void bilinearPositionScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0xFF000000, 0);
+    const u32 texels[8] = {0xFF0000FFu, 0xFF00FF00u, 0, 0, 0xFF0000FFu, 0xFF00FF00u, 0, 0};
+    b.texMode(GE_TFMT_8888, 0, false);
+    b.setTexture(0, b.place(texels, sizeof texels), 2, 2, 4);
+    b.texFunc(3, true);  // REPLACE
+    b.texFilter(1, 1);
+    b.texWrap(true, true);
+    b.enable(GE_CMD_TME, true);
+    constexpr u32 vtype = vt::TC_F | vt::COL_8888 | vt::POS_F | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].u = 143.7f / 256.0f, v[0].v = 0.5f;
+    v[1].x = 1, v[1].y = 1, v[1].u = v[0].u + 1, v[1].v = 1.5f;
+    v[0].color = v[1].color = 0xFFFFFFFFu;
+    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, packVertices(vtype, v, 2).data());
+}
+
+TEST(AccuracyProfiles, BilinearPositionTruncation) {
+    checkBothProfiles(
+        bilinearPositionScene, [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x007F7Fu); },
+        [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x008F6Fu); });
 }
 
 // implicitAlphaNonZeroTest: an alpha-0 source-alpha blend (A = As, B = 1 − As) without depth
