@@ -78,6 +78,7 @@ struct ge2gl_context {
     std::unique_ptr<ge::SceGe> sce;
     ge2gl_impl::CListener listener;
     int backend = GE2GL_BACKEND_NULL;
+    ge::geo::AccuracyProfile accuracy = ge::geo::AccuracyProfile::psp();  // config.accuracy (API 1.6)
     ge::u64 waitBudget = ge::u64(1) << 26;
     bool lazyWriteback = false, holdInterrupts = false;
     void (*vramDirty)(void*, uint32_t, uint32_t) = nullptr;

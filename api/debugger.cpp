@@ -207,7 +207,7 @@ ge2gl_status ge2gl_debug_vertices(ge2gl_context* h, ge2gl_debug_vertex* out, uin
         if (ge2gl_status s = syncPixels(h, c); s != GE2GL_OK) return s;  // vertices the GPU wrote are rare, but in memory
         std::vector<ge::debug::DrawVertex> v;
         std::string err;
-        if (!ge::debug::drawVertices(*h->mem, h->engine->state(), ge::readLE32(p), v, err))
+        if (!ge::debug::drawVertices(*h->mem, h->engine->state(), ge::readLE32(p), h->accuracy, v, err))
             return c.error(GE2GL_ERR_BAD_STATE, "no vertices: " + err);
         *out_count = uint32_t(v.size());
         if (!out) return GE2GL_OK;

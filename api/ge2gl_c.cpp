@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <new>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_time.h"
 #include "hle/pixel_format.h"
 
@@ -29,9 +30,11 @@ ge2gl_status createFailed(ge2gl_status s, const std::string& why) {
 
 // The handle's backend from the config (backend/factory.h); GE2GL_BACKEND_NULL has none (the
 // engine's own null backend). A failure is reported through createFailed.
-ge2gl_status makeBackend(const ge2gl_config* cfg, int32_t glMode, int32_t scale, bool has12, ge2gl_context& h) {
+ge2gl_status makeBackend(const ge2gl_config* cfg, int32_t glMode, int32_t scale, bool has12,
+                         const ge::geo::AccuracyProfile& accuracy, ge2gl_context& h) {
     namespace be = ge::backend;
     be::BackendOptions bo;
+    bo.accuracy = accuracy;
     std::string err;
     switch (cfg->backend) {
     case GE2GL_BACKEND_NULL: return GE2GL_OK;
@@ -134,6 +137,12 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
     if (scale < 1 || scale > 8 || (scale > 1 && glMode != GE2GL_GL_MODE_HW))
         return createFailed(GE2GL_ERR_INVALID_ARGUMENT,
                             "config.render_scale must be 1-8, and above 1 only with GE2GL_GL_MODE_HW");
+    // API 1.6: the accuracy profile; older hosts get the default, psp.
+    const int32_t accuracy = has(offsetof(ge2gl_config, accuracy), sizeof(cfg->accuracy)) ? cfg->accuracy
+                                                                                          : GE2GL_ACCURACY_PSP;
+    if (accuracy != GE2GL_ACCURACY_PSP && accuracy != GE2GL_ACCURACY_PPSSPP)
+        return createFailed(GE2GL_ERR_INVALID_ARGUMENT,
+                            "config.accuracy must be GE2GL_ACCURACY_PSP or GE2GL_ACCURACY_PPSSPP");
     if (cfg->backend < GE2GL_BACKEND_NULL || cfg->backend > GE2GL_BACKEND_GL_HEADLESS)
         return createFailed(GE2GL_ERR_INVALID_ARGUMENT, "config.backend is not a GE2GL_BACKEND_* value");
     // A host buffer has the size the host says, never an assumed one (a 32 MiB model's buffer
@@ -160,7 +169,10 @@ ge2gl_status ge2gl_create(const ge2gl_config* cfg, ge2gl_context** out) {
             h->mem = std::make_unique<ge::Memory>(ramSize);
         }
         h->backend = cfg->backend;
-        if (ge2gl_status st = makeBackend(cfg, glMode, scale, has12, *h); st != GE2GL_OK) return st;
+        const ge::geo::AccuracyProfile profile =
+            accuracy == GE2GL_ACCURACY_PPSSPP ? ge::geo::AccuracyProfile::ppsspp() : ge::geo::AccuracyProfile::psp();
+        h->accuracy = profile;
+        if (ge2gl_status st = makeBackend(cfg, glMode, scale, has12, profile, *h); st != GE2GL_OK) return st;
         // The engine draws through the gate, which leaves the handle's lock while the backend works.
         if (ge::Renderer* r = h->drawBackend.renderer.get()) h->gate = std::make_unique<RenderGate>(h.get(), r);
         h->engine = std::make_unique<ge::GeEngine>(*h->mem, h->gate.get());

@@ -30,6 +30,7 @@ gl::GlOptions glOptions(const BackendOptions& opt) {
     go.loader = opt.glLoader;
     go.shaderDumpDir = opt.shaderDumpDir;
     go.programCacheDir = opt.programCacheDir;
+    go.accuracy = opt.accuracy;
     return go;
 }
 
@@ -64,6 +65,7 @@ Backend createBackend(Memory& mem, const BackendOptions& opt, std::string& err) 
     case BackendKind::Soft: {
         soft::SoftOptions so;
         so.threads = opt.threads;
+        so.accuracy = opt.accuracy;
         b.renderer = soft::createSoftRenderer(mem, so);
         break;
     }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "backend/capabilities.h"
+#include "geometry/accuracy_profile.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
 
@@ -29,6 +30,9 @@ enum class GlVertices { Auto, Gpu, Cpu };
 struct BackendOptions {
     BackendKind kind = BackendKind::Soft;
     int threads = 0;  // Soft: band threads (0 = all cores); the output is identical for any count
+    // Both: the rules where the PSP and PPSSPP's software renderer differ
+    // (geometry/accuracy_profile.h): psp, what the GE does, or ppsspp, that renderer's pixels.
+    geo::AccuracyProfile accuracy = geo::AccuracyProfile::psp();
     // Gl only:
     GlContext glContext = GlContext::OSMesa;
     GlMode glMode = GlMode::Exact;

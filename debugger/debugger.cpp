@@ -208,7 +208,8 @@ std::vector<u32> readClut(const GeState& st) {
     return out;
 }
 
-bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<DrawVertex>& out, std::string& err) {
+bool drawVertices(const Memory& mem, const GeState& st, u32 word, const geo::AccuracyProfile& acc,
+                  std::vector<DrawVertex>& out, std::string& err) {
     out.clear();
     if (opOf(word) != GE_CMD_PRIM) {
         err = "the command at the pc is not a PRIM";
@@ -219,7 +220,7 @@ bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<Dr
     if (!decodeDrawVertices(mem, st, vtype, st.vertexAddr, st.indexAddr, count, in, &err)) return false;
     const VertexReader reader(mem, st, vtype);
     geo::TransformState ts = geo::makeTransformState(st, vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
-    ts.sprite = ((word >> 16) & 7) == GE_PRIM_RECTANGLES;
+    ts.sprite = ((word >> 16) & 7) == GE_PRIM_RECTANGLES && acc.pspSpritePosition;
     for (const DecodedVertex& v : in) {
         geo::ClipVertex cv;
         geo::transformVertex(ts, v, cv);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_engine.h"
 #include "hle/vertex_decoder.h"
 
@@ -101,6 +102,8 @@ struct DrawVertex {
     u8 color[4] = {};
     bool outside = false;  // breaks the docs/ge-rules.md §8.5 screen range rule (the primitive is dropped)
 };
-bool drawVertices(const Memory& mem, const GeState& st, u32 word, std::vector<DrawVertex>& out, std::string& err);
+// `acc`: the backend's profile (transform-mode sprite positions: AccuracyProfile::pspSpritePosition).
+bool drawVertices(const Memory& mem, const GeState& st, u32 word, const geo::AccuracyProfile& acc,
+                  std::vector<DrawVertex>& out, std::string& err);
 
 }  // namespace ge::debug

@@ -10,7 +10,7 @@
 
 namespace ge::geo {
 
-RasterParams rasterParamsFor(const GeState& st, bool through, bool sprite) {
+RasterParams rasterParamsFor(const GeState& st, bool through, bool rectangles, const AccuracyProfile& acc) {
     RasterParams rp;
     // Scissor ∩ REGION2 (docs/ge-rules.md §8.6; REGION1 is kept 0 by games).
     rp.clipX1 = int(st.SCISSOR1_x());
@@ -25,7 +25,8 @@ RasterParams rasterParamsFor(const GeState& st, bool through, bool sprite) {
     rp.needW = rp.textured && levelMode == 2;
     rp.fog = !through && st.FGE_on();
     rp.through = through;
-    rp.sprite = sprite;
+    rp.sprite = rectangles && acc.spriteFarEdgeExcluded;
+    rp.zeroAreaTriangles = acc.zeroAreaTriangles;
     rp.texW0 = float(texCoordWidth(st, 0));  // unclamped 2^n (texture_size.h)
     rp.texH0 = float(texCoordHeight(st, 0));
     return rp;
@@ -66,7 +67,7 @@ bool DrawFrontEnd::prim(const Memory& mem, const GeState& st, const PrimPacket& 
         if (err) *err = "unreadable index data";
         return false;
     }
-    begin(st, rasterParamsFor(st, ts_.through, ts_.sprite), sink);
+    begin(st, rasterParamsFor(st, ts_.through, p.prim == GE_PRIM_RECTANGLES, acc_), sink);
     rectDetect_ = RectDetect::fromState(st, ts_.through, st.TME_on(), pending_.empty());
     assemble(p.prim, true);
     rectDetect_.allowed = false;
@@ -78,7 +79,7 @@ bool DrawFrontEnd::prim(const Memory& mem, const GeState& st, const PrimPacket& 
 bool DrawFrontEnd::decode(const Memory& mem, const GeState& st, const PrimPacket& p) {
     VertexReader reader(mem, st, p.vtype);
     ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_);
-    ts_.sprite = p.prim == GE_PRIM_RECTANGLES;
+    ts_.sprite = p.prim == GE_PRIM_RECTANGLES && acc_.pspSpritePosition;
     cverts_.assign(pending_.begin(), pending_.end());
     seq_.clear();
     for (u32 i = 0; i < pending_.size(); ++i) seq_.push_back(i);
@@ -122,7 +123,7 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
     pending_.clear();
     stripOdd_ = false;
     TessOutput tess;
-    if (!tessellatePatch(mem, st, p, tess, err)) {
+    if (!tessellatePatch(mem, st, p, acc_, tess, err)) {
         ++stats_.badDraws;
         return false;
     }
@@ -141,7 +142,7 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
         if (i < tess.verts.size()) seq_.push_back(i);
     // Patch culling (CMD_PCE, manual §11.2) removes patches outside the drawing region; the clip
     // rectangle already includes REGION2, so those pixels are never drawn either way.
-    begin(st, rasterParamsFor(st, ts_.through, false), sink);
+    begin(st, rasterParamsFor(st, ts_.through, false, acc_), sink);
     rectDetect_.allowed = false;
     assemble(tess.prim, false);
     stripOdd_ = false;
@@ -154,7 +155,7 @@ void DrawFrontEnd::immediate(const GeState& st, const ImmPacket& p, PrimitiveSin
     ts_ = TransformState{};
     ts_.through = true;
     immediateVertices(st, p.vertices, cverts_, seq_);
-    RasterParams rp = rasterParamsFor(st, true, false);
+    RasterParams rp = rasterParamsFor(st, true, false, acc_);
     rp.fog = st.FGE_on() && !st.isThrough();
     begin(st, rp, sink);
     rectDetect_.allowed = false;

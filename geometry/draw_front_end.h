@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/accuracy_profile.h"
 #include "geometry/assembly.h"
 #include "geometry/raster.h"
 #include "geometry/transform.h"
@@ -74,7 +75,9 @@ struct FrontEndStats {
 // The raster parameters of a draw: scissor ∩ REGION2 (docs/ge-rules.md §8.6), shading, texturing
 // and fog as the state sets them, clear mode drawing flat and untextured (PPSSPP's software
 // renderer, ClearMode handling in Rasterizer).
-RasterParams rasterParamsFor(const GeState& st, bool through, bool sprite);
+// `rectangles`: a RECTANGLES draw (its far edge as AccuracyProfile::spriteFarEdgeExcluded says);
+// AccuracyProfile::zeroAreaTriangles as `acc` says.
+RasterParams rasterParamsFor(const GeState& st, bool through, bool rectangles, const AccuracyProfile& acc);
 
 // The state an immediate-mode primitive draws with: the AP2 flags of its first vertex override
 // antialiasing, shading, culling, texturing, fog and dither (docs/ge-rules.md §3.12).
@@ -82,6 +85,10 @@ GeState immediateState(const GeState& st, u32 ap2Flags);
 
 class DrawFrontEnd {
 public:
+    // `acc`: the rules where the PSP and PPSSPP's software renderer differ (accuracy_profile.h).
+    explicit DrawFrontEnd(const AccuracyProfile& acc) : acc_(acc) {}
+    const AccuracyProfile& accuracy() const { return acc_; }
+
     // A PRIM draw (`p.continuation`: PRIM type 7, docs/ge-rules.md §3.2). False + err when its
     // index data is unreadable: nothing is drawn and no vertices stay open. Unreadable vertices
     // drop the primitives they belong to (counted as a bad draw, the rest is drawn).
@@ -142,6 +149,7 @@ private:
 
     // Per-draw context.
     PrimitiveSink* sink_ = nullptr;
+    AccuracyProfile acc_;
     TransformState ts_;
     MatrixFold fold_;  // the last draw's matrix products (makeTransformState)
     RasterParams rp_;

@@ -141,6 +141,7 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
         const int lo = std::min({v[0]->y, v[1]->y, v[2]->y}), hi = std::max({v[0]->y, v[1]->y, v[2]->y});
         const s64 area = s64(v[1]->x - v[0]->x) * (v[2]->y - v[0]->y) - s64(v[1]->y - v[0]->y) * (v[2]->x - v[0]->x);
         if (area == 0) {  // rasterZeroAreaTriangle: every row the vertices' box touches
+            if (!rp.zeroAreaTriangles) return false;
             y1 = int(floorDiv(lo, 16));
             y2 = int(floorDiv(hi, 16));
         } else {
@@ -379,7 +380,7 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
                     const ScreenVertex& prov, const Band& band, FragmentSink& sink) {
     const s64 area = s64(in1.x - in0.x) * (in2.y - in0.y) - s64(in1.y - in0.y) * (in2.x - in0.x);
     if (area == 0) {
-        rasterZeroAreaTriangle(rp, in0, in1, in2, prov, band, sink);
+        if (rp.zeroAreaTriangles) rasterZeroAreaTriangle(rp, in0, in1, in2, prov, band, sink);
         return;
     }
     // Pixel box whose centres lie within the vertices' extent, clipped.

@@ -71,6 +71,9 @@ struct RasterParams {
     // A RECTANGLES draw (TransformState::sprite), not a strip or fan quad drawn as a rectangle
     // (assembly.h): the pixel on its far edge is left out, as on a PSP (rectangleSetup).
     bool sprite = false;
+    // Zero-area triangles draw the samples exactly on their line, as PPSSPP does
+    // (AccuracyProfile::zeroAreaTriangles; rasterTriangle); else they draw nothing.
+    bool zeroAreaTriangles = true;
     float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 

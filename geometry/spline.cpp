@@ -52,7 +52,7 @@ struct SplineSpan {
 
 // Spans of the count − 3 patches of one direction. Every difference includes the patch's own
 // span of length 1 (splineKnots), so none is zero.
-std::vector<SplineSpan> splineSpans(int count, int knotType) {
+std::vector<SplineSpan> splineSpans(int count, int knotType, bool openKnotQuirk) {
     std::vector<float> U;
     splineKnots(count, knotType, U);
     std::vector<SplineSpan> spans(size_t(std::max(count - 3, 0)));
@@ -66,14 +66,16 @@ std::vector<SplineSpan> splineSpans(int count, int knotType) {
         s.r42 = 1.0f / (U[p + 5] - U[p + 3]);
         s.r32 = 1.0f / (U[p + 4] - U[p + 3]);
     }
-    // A single patch open at both ends: the reference sets 1/(U[5]−U[2]) for the open end (1/2,
-    // right when the start is closed) after the open start's value (1, the true one), so its
-    // weights are not the Bernstein ones: at t = 1/2 they are (1/8, 1/2, 1/4, 1/8) instead of
-    // (1/8, 3/8, 3/8, 1/8). Still a partition of unity with exact ends, so a flat patch stays
-    // flat, but its tessellated vertices sit at other places: GachiTora draws its button and
-    // speech-bubble text as such 4x4 splines, and only these weights reproduce the reference's
-    // bilinear texel fractions there (docs/accuracy.md, "Reference quirks").
-    if (count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
+    // A single patch open at both ends, under AccuracyProfile::splineOpenKnotQuirk: the reference
+    // sets 1/(U[5]−U[2]) for the open end (1/2, right when the start is closed) after the open
+    // start's value (1, the true one), so its weights are not the Bernstein ones: at t = 1/2 they
+    // are (1/8, 1/2, 1/4, 1/8) instead of (1/8, 3/8, 3/8, 1/8). Still a partition of unity with
+    // exact ends, so a flat patch stays flat, but its tessellated vertices sit at other places:
+    // GachiTora draws its button and speech-bubble text as such 4x4 splines, and only these
+    // weights reproduce the reference's bilinear texel fractions there (docs/accuracy.md,
+    // "Reference quirks"). Without the quirk the manual's knot vector (§5.2.1) gives the
+    // Bernstein weights, as on a PSP.
+    if (openKnotQuirk && count == 4 && (knotType & 3) == 3) spans[0].r41 = 0.5f;
     return spans;
 }
 
@@ -290,7 +292,8 @@ void splineKnots(int n, int knotType, std::vector<float>& knots) {
         for (int i = n + 1; i < n + 4; ++i) knots[size_t(i)] = float(n - 3);
 }
 
-bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, TessOutput& out, std::string* err) {
+bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, const AccuracyProfile& acc,
+                     TessOutput& out, std::string* err) {
     out.verts.clear();
     out.indices.clear();
     out.prim = p.patchPrim == 0 ? GE_PRIM_TRIANGLES : p.patchPrim == 1 ? GE_PRIM_LINES : GE_PRIM_POINTS;
@@ -331,8 +334,8 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
     s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));
     if (p.spline) {
-        s.spansU = splineSpans(int(ucount), int(p.uknot & 3));
-        s.spansV = splineSpans(int(vcount), int(p.vknot & 3));
+        s.spansU = splineSpans(int(ucount), int(p.uknot & 3), acc.splineOpenKnotQuirk);
+        s.spansV = splineSpans(int(vcount), int(p.vknot & 3), acc.splineOpenKnotQuirk);
     }
     s.packAttributes();
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/renderer.h"
 #include "hle/vertex_decoder.h"
 
@@ -20,9 +21,9 @@ struct TessOutput {
 // triangles/lines/points, PFACE): control points read through VertexReader (+indices), generated
 // UVs when the vertex has none, generated normals when lighting needs them, colours/UVs/positions
 // interpolated with the same basis. Output in model space. Returns false + err on bad input;
-// counts below the minimum draw nothing (true, empty).
-bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, TessOutput& out,
-                     std::string* err = nullptr);
+// counts below the minimum draw nothing (true, empty). `acc`: AccuracyProfile::splineOpenKnotQuirk.
+bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, const AccuracyProfile& acc,
+                     TessOutput& out, std::string* err = nullptr);
 
 // Basis helpers exposed for tests: cubic Bezier (Bernstein) weights at t, and the spline knot
 // vector for n control points and a knot type (bit 0 start open, bit 1 end open).

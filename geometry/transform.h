@@ -41,9 +41,10 @@ struct TransformState {
     // Transform-mode rectangles drawn as two triangles: texture projection whose Q can vary over
     // the rectangle (see makeTransformState).
     bool rectAsTriangles = false;
-    // The draw is a RECTANGLES draw (a sprite): in transform mode its vertices reach the screen by
-    // the PSP's sprite rule (projectToScreen; docs/conformance.md "Sprites"); through-mode positions
-    // are drawing coordinates as given. Set by the caller, which knows the primitive;
+    // The draw is a RECTANGLES draw (a sprite) that follows the PSP's sprite rule
+    // (AccuracyProfile::pspSpritePosition): in transform mode its vertices reach the screen by it
+    // (projectToScreen; docs/conformance.md "Sprites"); through-mode positions are drawing
+    // coordinates as given. Set by the caller, which knows the primitive and the profile;
     // makeTransformState leaves it false.
     bool sprite = false;
     float su = 1, sv = 1, tu = 0, tv = 0;

@@ -17,11 +17,11 @@ for d in "${dumps[@]}"; do
   ./build/ge2gl render "$d" --backend gl -o "out/$n-gl.png" || echo "main: GL render of $n failed"
 done
 echo "== software model vs expected images (dumps/expected) =="
-./build/ge2gl compare "${dumps[@]}" --backend soft --ref-dir dumps/expected --diff-dir out/diff-soft || true
+./build/ge2gl compare "${dumps[@]}" --backend soft --accuracy ppsspp --ref-dir dumps/expected --diff-dir out/diff-soft || true
 echo "== GL translator vs expected images =="
-./build/ge2gl compare "${dumps[@]}" --backend gl --ref-dir dumps/expected --diff-dir out/diff-gl || true
+./build/ge2gl compare "${dumps[@]}" --backend gl --accuracy ppsspp --ref-dir dumps/expected --diff-dir out/diff-gl || true
 if [ -d ../shared/frametests/dumps ]; then
   echo "== software model vs frametest references (../shared/frametests) =="
-  ./build/ge2gl compare ../shared/frametests/dumps/* --backend soft --ref-dir ../shared/frametests/ref --json out/frametests-soft.json || true
+  ./build/ge2gl compare ../shared/frametests/dumps/* --backend soft --accuracy ppsspp --ref-dir ../shared/frametests/ref --json out/frametests-soft.json || true
 fi
 echo "main: images in out/"

@@ -9,8 +9,9 @@ namespace ge::shadergen {
 
 u64 hashBytes(const void* p, size_t n) { return XXH3_64bits(p, n); }
 
-DrawFlags DrawFlags::fromState(const GeState& st) {
+DrawFlags DrawFlags::fromState(const GeState& st, const geo::AccuracyProfile& acc) {
     DrawFlags f;
+    f.accuracy = acc;
     f.through = st.isThrough();
     f.texture = st.TME_on();
     f.fog = st.FGE_on();
@@ -61,10 +62,12 @@ void canonicalize(FsKey& k) {
         k.texFunc = k.texAlpha = k.texDouble = 0;
         k.texMagLinear = k.texMinLinear = k.texMip = k.texLodMode = 0;
         k.texClampU = k.texClampV = 0;
+        k.texLinearTrunc = 0;
     } else {
         if (k.texFunc > 4) k.texFunc = 4;  // 5–7 behave as ADD (ge-rules.md §3.8)
         // The level of detail only matters when it can change the filter or the level.
         if (k.texMip == 0 && k.texMinLinear == k.texMagLinear) k.texLodMode = 0;
+        if (!k.texMinLinear && !k.texMagLinear) k.texLinearTrunc = 0;  // no bilinear sample
     }
     if (!k.stencilTest) k.sopFail = k.sopZFail = k.sopZPass = 0;
     if (!k.blend) k.blendA = k.blendB = 0;
@@ -124,12 +127,15 @@ PipelineKeys keysFromState(const GeState& st, const DrawFlags& flags, const Host
             k.texLodMode = u8(lm == 3 ? 1 : lm);
             k.texClampU = st.TWRAP_uclamp() ? 1 : 0;
             k.texClampV = st.TWRAP_vclamp() ? 1 : 0;
+            k.texLinearTrunc = flags.accuracy.pspBilinearTruncation ? 1 : 0;
         }
         k.fog = (flags.fog && !flags.through) ? 1 : 0;  // fog is off in through mode (ge-rules.md §3.9)
-        if (st.ATE_on() && st.ATEST_func() != 1 && !geo::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull))
+        const geo::AccuracyProfile& acc = flags.accuracy;
+        if (st.ATE_on() && st.ATEST_func() != 1 &&
+            !(acc.clutSkipsAlphaTest && geo::referenceSkipsAlphaTest(st, flags.texture, flags.vertexAlphaFull)))
             k.alphaTest = u8(st.ATEST_func() + 1);
         // The reference's implicit alpha != 0 test (geometry/reference_rules.h): code 9.
-        if (geo::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
+        if (acc.implicitAlphaNonZeroTest && geo::referenceDropsZeroAlpha(st, flags.texture)) k.alphaTest = 9;
         if (st.CTE_on() && st.CTEST_func() != 1) k.colorTest = u8(st.CTEST_func() + 1);
         if (st.STE_on() && fmt != GE_FORMAT_565) {
             // 5650 has no stencil bits: the stored value reads as 0 and is never written, but

@@ -4,6 +4,7 @@
 // per draw, which parts of the GE pixel pipeline run in the shader and which in GL fixed
 // function; the translator only maps that decision to GL calls.
 #pragma once
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_state.h"
 #include "shadergen/shader_keys.h"
 
@@ -20,7 +21,10 @@ struct DrawFlags {
     // Every primary colour of the draw's primitives that reaches a fragment has alpha 255
     // (geometry/reference_rules.h referenceSkipsAlphaTest); known once the geometry is built.
     bool vertexAlphaFull = false;
-    static DrawFlags fromState(const GeState& st);
+    // Which of the reference's alpha-test rules apply (AccuracyProfile::clutSkipsAlphaTest,
+    // implicitAlphaNonZeroTest): the translator's profile.
+    geo::AccuracyProfile accuracy = geo::AccuracyProfile::psp();
+    static DrawFlags fromState(const GeState& st, const geo::AccuracyProfile& acc);
 };
 
 // The fixed-function GL state that goes with a key.

@@ -430,10 +430,13 @@ void emitAtlasTexel(std::string& s, const FsKey& k) {
 void emitTexelFilters(std::string& s, const FsKey& k) {
     const std::string scale = k.texTarget ? "u_texScale" : "1";
     // Truncated toward zero; out of int range (and NaN) → INT_MIN (sampler.cpp texelFixed).
-    // Linear rounds to nearest, ties to even, instead (sampler.cpp texelFixedRound).
-    s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n"
-         "int fixr(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(roundEven(p)) : int(0x80000000u); }\n"
-         // A render-target texture is addressed in its own (scaled) texels: u_texScale per texel.
+    // Linear rounds to nearest, ties to even, instead (sampler.cpp texelFixedRound), unless the
+    // key asks for the PSP's truncation (texLinearTrunc).
+    s += "int fixc(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(p) : int(0x80000000u); }\n";
+    s += k.texLinearTrunc
+             ? "int fixr(float p) { return fixc(p); }\n"
+             : "int fixr(float p) { return (p >= -2147483648.0 && p < 2147483648.0) ? int(roundEven(p)) : int(0x80000000u); }\n";
+    s += // A render-target texture is addressed in its own (scaled) texels: u_texScale per texel.
          "ivec2 fixCoord(int lv, vec2 st) {\n"
          "  vec2 p = st * (vec2(u_texLevels[lv].yz * " + scale + ") * 256.0);\n"
          "  return ivec2(fixc(p.x), fixc(p.y));\n"

@@ -103,7 +103,9 @@ struct FsKey {
     u8 texTarget = 0;
     u8 texFormat = 0;   // GeTextureFormat when texTarget: 0–3 (5650, 5551, 4444, 8888), or 6/7
                         // (CLUT16 / CLUT32: the pixel is the index, looked up in u_clutTex)
-    u8 reserved[2] = {};
+    // Bilinear position truncated, not rounded (geo::AccuracyProfile::pspBilinearTruncation).
+    u8 texLinearTrunc = 0;
+    u8 reserved[1] = {};
 };
 static_assert(sizeof(FsKey) == 40, "FsKey: every byte must be a named field");
 

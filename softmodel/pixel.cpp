@@ -153,7 +153,7 @@ ShadeFn pickShade(const Impl& im) {
     return table[(im.texture ? 8 : 0) | (im.blend ? 4 : 0) | (im.depthTest ? 2 : 0) | (full ? 1 : 0)];
 }
 
-void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache) {
+void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache, const geo::AccuracyProfile& acc) {
     Sampler& sm = im.sampler;
     LodParams& lp = sm.lod;
     const u32 mode = st.TLEVEL_mode();
@@ -183,6 +183,7 @@ void setupTexture(Impl& im, const GeState& st, Memory& mem, TextureCache& cache)
         auto data = cache.level(st, mem, l);
         sm.levels[l].texels = data->texels.data();
         sm.levels[l].setSize(st.TSIZE_wlog(l), st.TSIZE_hlog(l), int(data->width), int(data->height));
+        sm.levels[l].linearTruncates = acc.pspBilinearTruncation;
         im.levelData[l] = std::move(data);
     }
     sm.levelCount = last + 1;
@@ -210,7 +211,8 @@ int rowsReachable(u32 pixels, u32 stride) {
 
 }  // namespace
 
-PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled, bool vertexAlphaFull) {
+PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, const geo::AccuracyProfile& acc,
+                           bool textureEnabled, bool vertexAlphaFull) {
     PixelState ps;
     auto im = std::make_shared<Impl>();
     const GeBufferFormat fmt = st.framebufFormat();
@@ -235,7 +237,7 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
 
     // Texturing: never in clear mode (manual §19.6).
     im->texture = textureEnabled && !clear;
-    if (im->texture) setupTexture(*im, st, mem, cache);
+    if (im->texture) setupTexture(*im, st, mem, cache, acc);
 
     // Fog: off in through and clear mode (ge-rules.md §3.9, §8.4).
     im->fog = st.FGE_on() && !im->through && !clear;
@@ -256,9 +258,10 @@ PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, 
     im->alphaTest = st.ATE_on() && !clear && im->alphaFunc != CMP_ALWAYS;
     // The reference renderer's skipped alpha test for CLUT textures (geometry/reference_rules.h,
     // which the GL translator's shader keys apply too).
-    if (im->alphaTest && geo::referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull)) im->alphaTest = false;
+    if (acc.clutSkipsAlphaTest && im->alphaTest && geo::referenceSkipsAlphaTest(st, im->texture, vertexAlphaFull))
+        im->alphaTest = false;
     // The reference renderer's implicit "alpha != 0" test for source-alpha blending (ditto).
-    if (!clear && geo::referenceDropsZeroAlpha(st, im->texture)) {
+    if (acc.implicitAlphaNonZeroTest && !clear && geo::referenceDropsZeroAlpha(st, im->texture)) {
         im->alphaTest = true;
         im->alphaFunc = CMP_NOTEQUAL;
         im->alphaMask = 0xFF;

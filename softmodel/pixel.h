@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "geometry/accuracy_profile.h"
 #include "geometry/fragment.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
@@ -41,9 +42,10 @@ struct PixelState {
 // packet/state; `textureEnabled` may be overridden (immediate vertices carry their own flags).
 // `vertexAlphaFull`: every primary colour of the draw that reaches a fragment has alpha 255 (the
 // reference's skipped alpha test depends on it, geometry/reference_rules.h
-// referenceSkipsAlphaTest).
-PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, bool textureEnabled,
-                           bool vertexAlphaFull = false);
+// referenceSkipsAlphaTest). `acc`: whether the reference's alpha-test rules apply
+// (AccuracyProfile::clutSkipsAlphaTest, implicitAlphaNonZeroTest).
+PixelState buildPixelState(const GeState& st, Memory& mem, TextureCache& cache, const geo::AccuracyProfile& acc,
+                           bool textureEnabled, bool vertexAlphaFull = false);
 
 // Runs the whole per-pixel pipeline for n fragments, in order.
 void shadeFragments(const PixelState& ps, const geo::Fragment* frags, size_t n);

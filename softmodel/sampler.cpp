@@ -127,10 +127,10 @@ inline u32 nearestT(const TexLevel& lv, float s, float t) {
 template <bool CU, bool CV>
 inline u32 bilinearT(const TexLevel& lv, float s, float t) {
     if (!lv.texels) return 0;
-    // Rounded position (texelFixedRound), half a texel back (128/256), then 8 integer bits and
-    // the top 4 of the fraction.
-    const s64 bu = texelFixedRound(s * lv.scaleU) - 128;
-    const s64 bv = texelFixedRound(t * lv.scaleV) - 128;
+    // Rounded (texelFixedRound) or truncated position (TexLevel::linearTruncates), half a texel
+    // back (128/256), then 8 integer bits and the top 4 of the fraction.
+    const s64 bu = (lv.linearTruncates ? texelFixed(s * lv.scaleU) : texelFixedRound(s * lv.scaleU)) - 128;
+    const s64 bv = (lv.linearTruncates ? texelFixed(t * lv.scaleV) : texelFixedRound(t * lv.scaleV)) - 128;
     const int fu = int((bu >> 4) & 15), fv = int((bv >> 4) & 15);
     const s64 u0 = bu >> 8, v0 = bv >> 8;
     const int ua = addressTexel<CU>(u0, lv.wrapMaskU, lv.clampMaxU);

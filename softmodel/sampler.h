@@ -23,6 +23,9 @@ struct TexLevel {
     float scaleU = 256, scaleV = 256;
     int wrapMaskU = 0, wrapMaskV = 0;  // (w − 1) & 511, further limited to the stored size
     int clampMaxU = 0, clampMaxV = 0;  // min(w, 512) − 1, further limited to the stored size
+    // Bilinear: the position truncated as for nearest (geo::AccuracyProfile::pspBilinearTruncation),
+    // else rounded to nearest (texelFixedRound).
+    bool linearTruncates = false;
 
     // Fills the addressing fields for a level of nominal size 2^wlog × 2^hlog whose decoded
     // texels are storedW × storedH.

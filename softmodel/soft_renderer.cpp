@@ -133,7 +133,7 @@ VramRange vramRange(u32 addr, u64 bytes) {
 }  // namespace
 
 struct SoftRenderer::Impl final : geo::PrimitiveSink {
-    Impl(Memory& m, const SoftOptions& opt) : mem(m), cache(createTextureCache()) {
+    Impl(Memory& m, const SoftOptions& opt) : mem(m), cache(createTextureCache()), frontEnd(opt.accuracy) {
         int n = opt.threads;
         if (n <= 0) n = int(std::thread::hardware_concurrency());
         threads = std::clamp(n, 1, kMaxThreads);
@@ -308,7 +308,7 @@ struct SoftRenderer::Impl final : geo::PrimitiveSink {
         const bool alphaFull = frontEnd.drawAlphaFull();
         if (forceRebuild || !psValid || (pendingDirty & kPixelDirty) || through != psThrough || textured != psTextured ||
             alphaFull != psAlphaFull) {
-            ps = buildPixelState(st, mem, *cache, textured, alphaFull);
+            ps = buildPixelState(st, mem, *cache, frontEnd.accuracy(), textured, alphaFull);
             psValid = !forceRebuild;
             psThrough = through;
             psTextured = textured;

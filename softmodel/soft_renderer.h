@@ -16,12 +16,15 @@
 #pragma once
 #include <memory>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/renderer.h"
 
 namespace ge::soft {
 
 struct SoftOptions {
     int threads = 0;  // rasterising threads; 0 = hardware concurrency; 1 = no worker threads
+    // The rules where the PSP and PPSSPP's software renderer differ (geometry/accuracy_profile.h).
+    geo::AccuracyProfile accuracy = geo::AccuracyProfile::psp();
 };
 
 struct SoftStats {

@@ -14,6 +14,7 @@
 #include "hle/ge_engine.h"
 #include "softmodel/soft_renderer.h"
 #include "tests/api_host.h"
+#include "tests/reference_quirk_scenes.h"
 
 using namespace apitest;
 
@@ -268,4 +269,62 @@ TEST(ApiGl, HardwareModeAtScaleTwoFromTheConfig) {
     ge2gl_destroy(h);
     cfg.struct_size = uint32_t(sizeof(ge2gl_config)) + 4;
     EXPECT_EQ(ge2gl_create(&cfg, &h), GE2GL_ERR_VERSION);
+}
+
+namespace {
+
+// Pixel (0, 0) of tests/reference_quirk_scenes.h skippedAlphaTestScene (palette entry 0 =
+// 0x00000001, vertex alpha 255) drawn through the API on the software backend with `cfg`
+// adjusted by `edit`: 0x000001 under the ppsspp profile (PPSSPP skips the alpha test), 0 under
+// psp (the GE rejects the alpha-0 texel). Returns the create status in *status.
+uint32_t clutAlphaPixel(void (*edit)(ge2gl_config&), ge2gl_status* status) {
+    std::vector<uint8_t> ram(kRamSize), vram(0x200000);
+    ge2gl_config cfg;
+    ge2gl_config_init(&cfg);
+    cfg.ram = ram.data();
+    cfg.ram_size = kRamSize;
+    cfg.vram = vram.data();
+    cfg.backend = GE2GL_BACKEND_SOFT;
+    cfg.soft_threads = 1;
+    edit(cfg);
+    ge2gl_context* h = nullptr;
+    *status = ge2gl_create(&cfg, &h);
+    if (*status != GE2GL_OK) return ~0u;
+    ge::Memory mem(ram.data(), uint32_t(ram.size()), vram.data());
+    ge::ListBuilder b(&mem, 0x08200000);
+    ge::testscene::skippedAlphaTestScene(b, 0x00000001u, 255);
+    b.finish(0);
+    const uint32_t list = b.placeList();
+    int32_t id = 0, s = 0;
+    EXPECT_EQ(ge2gl_list_enqueue(h, list, 0, -1, nullptr, &id), GE2GL_OK);
+    EXPECT_EQ(ge2gl_draw_sync(h, GE2GL_SYNC_WAIT, &s), GE2GL_OK);
+    ge2gl_destroy(h);
+    return (uint32_t(vram[0]) | uint32_t(vram[1]) << 8 | uint32_t(vram[2]) << 16);
+}
+
+}  // namespace
+
+// API 1.6 config.accuracy selects the profile (geometry/accuracy_profile.h); a host built against
+// 1.5 passes the smaller struct and gets the default, psp; other values are refused.
+TEST(ApiSoft, ConfigAccuracySelectsTheProfile) {
+    ge2gl_status st;
+    EXPECT_EQ(clutAlphaPixel([](ge2gl_config&) {}, &st), 0u);
+    EXPECT_EQ(st, GE2GL_OK);
+    EXPECT_EQ(clutAlphaPixel([](ge2gl_config& c) { c.accuracy = GE2GL_ACCURACY_PPSSPP; }, &st), 0x000001u);
+    EXPECT_EQ(st, GE2GL_OK);
+    EXPECT_EQ(clutAlphaPixel([](ge2gl_config& c) { c.accuracy = GE2GL_ACCURACY_PSP; }, &st), 0u);
+    EXPECT_EQ(st, GE2GL_OK);
+    // A 1.5 host: the struct ends before accuracy, so the field (set here) is never read.
+    EXPECT_EQ(clutAlphaPixel(
+                  [](ge2gl_config& c) {
+                      c.api_version = (1u << 16) | 5u;
+                      c.struct_size = uint32_t(offsetof(ge2gl_config, accuracy));
+                      c.accuracy = GE2GL_ACCURACY_PPSSPP;
+                  },
+                  &st),
+              0u);
+    EXPECT_EQ(st, GE2GL_OK);
+    clutAlphaPixel([](ge2gl_config& c) { c.accuracy = 7; }, &st);
+    EXPECT_EQ(st, GE2GL_ERR_INVALID_ARGUMENT);
+    EXPECT_EQ(GE2GL_API_VERSION_MINOR, 6);
 }

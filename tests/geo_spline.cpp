@@ -86,7 +86,7 @@ TEST(Spline, Bezier4x4Div2) {
     writeGrid(mem, 4, 4, bumpy);
     TessOutput out;
     std::string err;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), out, &err)) << err;
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), geo::AccuracyProfile::ppsspp(), out, &err)) << err;
     EXPECT_EQ(out.prim, GE_PRIM_TRIANGLES);
     ASSERT_EQ(out.verts.size(), 9u);
     ASSERT_EQ(out.indices.size(), 24u);  // 8 triangles
@@ -124,7 +124,7 @@ TEST(Spline, BezierTwoPatchesAndGeneratedUV) {
     GeState st;
     writeGrid(mem, 7, 4, flat);  // 2 patches in U
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 7, 4, 1), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 7, 4, 1), geo::AccuracyProfile::ppsspp(), out));
     ASSERT_EQ(out.verts.size(), 8u);  // 2 patches × 2×2 vertices
     EXPECT_EQ(out.indices.size(), 12u);
     // Patch 1 starts at control point column 3; its S runs 1..2.
@@ -140,10 +140,10 @@ TEST(Spline, GeneratedNormalsFollowPface) {
     GeState st;
     writeGrid(mem, 4, 4, flat);
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.verts[4].nrm[2], 0.0f);  // lighting off: no normals generated
     set(st, GE_CMD_LTE, 1);
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2), geo::AccuracyProfile::ppsspp(), out));
     // dP/du = +x, dP/dv = +y → cross = +z.
     for (const DecodedVertex& v : out.verts) {
         EXPECT_NEAR(v.nrm[0], 0.0f, 1e-6f);
@@ -152,7 +152,7 @@ TEST(Spline, GeneratedNormalsFollowPface) {
     }
     PatchPacket p = patch(false, 4, 4, 2);
     p.reverseFace = true;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     EXPECT_NEAR(out.verts[4].nrm[2], -1.0f, 1e-6f);
 }
 
@@ -172,7 +172,7 @@ TEST(Spline, ColoursAndUVsInterpolate) {
             writeF(mem, a + 20, 0.0f);
         }
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2, vtype), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 2, vtype), geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.verts[8].uv[0], 1.5f);  // corner control point's UV
     EXPECT_FLOAT_EQ(out.verts[4].uv[0], 0.75f);
     for (const DecodedVertex& v : out.verts) {
@@ -192,7 +192,7 @@ TEST(Spline, OpenSingleSplinePatchHasTheReferenceWeights) {
     PatchPacket p = patch(true, 4, 4, 4);
     p.uknot = p.vknot = 3;
     TessOutput spl;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, spl));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), spl));
     ASSERT_EQ(spl.verts.size(), 25u);
     EXPECT_EQ(spl.verts[0].pos[0], 0.0f);
     EXPECT_EQ(spl.verts[1].pos[0], 0.703125f);   // 30/64 + 2·6/64 + 3/64; Bezier: 0.75
@@ -202,7 +202,7 @@ TEST(Spline, OpenSingleSplinePatchHasTheReferenceWeights) {
     EXPECT_EQ(spl.verts[24].pos[1], 3.0f);
     // Same triangles as the Bezier patch.
     TessOutput bez;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 4), bez));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 4), geo::AccuracyProfile::ppsspp(), bez));
     EXPECT_EQ(spl.indices, bez.indices);
 }
 
@@ -216,7 +216,7 @@ TEST(Spline, TwoOpenSplinePatchesFollowTheKnotVector) {
     PatchPacket p = patch(true, 5, 4, 2);
     p.uknot = p.vknot = 3;
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     ASSERT_EQ(out.verts.size(), 5u * 3u);
     EXPECT_EQ(out.verts[1].pos[0], 1.1875f);  // 19/32 + 2/4 + 3/32
     EXPECT_EQ(out.verts[2].pos[0], 2.0f);     // 1/4 + 2/2 + 3/4
@@ -228,7 +228,7 @@ TEST(Spline, ClosedUniformSplineStartsAtTheBlendOfThreePoints) {
     GeState st;
     writeGrid(mem, 5, 4, flat);
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(true, 5, 4, 2), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(true, 5, 4, 2), geo::AccuracyProfile::ppsspp(), out));
     // (5−3)·2 + 1 = 5 by (4−3)·2 + 1 = 3 vertices.
     ASSERT_EQ(out.verts.size(), 15u);
     EXPECT_EQ(out.indices.size(), 4u * 2 * 6);
@@ -251,7 +251,7 @@ TEST(Spline, OpenEdgesInterpolateTheEndPoints) {
         p.uknot = type;
         p.vknot = 3;
         TessOutput out;
-        ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+        ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
         const u32 nu = 3 * 3 + 1;
         ASSERT_EQ(out.verts.size(), size_t(nu) * (2 * 3 + 1));
         // V is open at both ends, so row 0 lies on control row 0 (y = 0).
@@ -278,7 +278,7 @@ TEST(Spline, BasisIsAPartitionOfUnity) {
             p.uknot = uk;
             p.vknot = vk;
             TessOutput out;
-            ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+            ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
             for (const DecodedVertex& v : out.verts) {
                 ASSERT_NEAR(v.pos[0], 7.0f, 1e-5f);
                 ASSERT_NEAR(v.pos[1], -3.0f, 1e-5f);
@@ -293,24 +293,24 @@ TEST(Spline, PatchPrimitivesAndMinimumCounts) {
     PatchPacket p = patch(false, 4, 4, 2);
     p.patchPrim = 1;
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.prim, GE_PRIM_LINES);
     EXPECT_EQ(std::vector<u32>(out.indices.begin(), out.indices.begin() + 6), (std::vector<u32>{0, 3, 1, 4, 1, 3}));
     p.patchPrim = 2;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.prim, GE_PRIM_POINTS);
     EXPECT_EQ(out.indices.size(), 9u);
     p.patchPrim = 3;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.prim, GE_PRIM_POINTS);
     // Fewer than 4 control points in a direction: nothing, but no error.
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 3, 4, 2), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 3, 4, 2), geo::AccuracyProfile::ppsspp(), out));
     EXPECT_TRUE(out.verts.empty());
     EXPECT_TRUE(out.indices.empty());
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(true, 4, 3, 2), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(true, 4, 3, 2), geo::AccuracyProfile::ppsspp(), out));
     EXPECT_TRUE(out.verts.empty());
     // Division 0 acts as 1.
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 0), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 0), geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.verts.size(), 4u);
 }
 
@@ -321,17 +321,17 @@ TEST(Spline, BadInputFails) {
     std::string err;
     PatchPacket p = patch(false, 4, 4, 2);
     p.vertexAddr = 0x00000100;
-    EXPECT_FALSE(tessellatePatch(mem, st, p, out, &err));
+    EXPECT_FALSE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out, &err));
     EXPECT_FALSE(err.empty());
     p = patch(false, 4, 4, 2, kFloatPos | (2u << 11));
     p.indexAddr = 0x00000100;
     err.clear();
-    EXPECT_FALSE(tessellatePatch(mem, st, p, out, &err));
+    EXPECT_FALSE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out, &err));
     EXPECT_FALSE(err.empty());
     // Absurd division counts are refused instead of allocating gigabytes.
     writeGrid(mem, 4, 4, flat);
     p = patch(true, 200, 200, 255);
-    EXPECT_FALSE(tessellatePatch(mem, st, p, out, &err));
+    EXPECT_FALSE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out, &err));
 }
 
 TEST(Spline, IndexedControlPoints) {
@@ -344,7 +344,7 @@ TEST(Spline, IndexedControlPoints) {
     PatchPacket p = patch(false, 4, 4, 1, kFloatPos | (2u << 11));
     p.indexAddr = kI;
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, p, out));
+    ASSERT_TRUE(tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out));
     EXPECT_EQ(out.verts[0].pos[0], 3.0f);
     EXPECT_EQ(out.verts[0].pos[1], 3.0f);
     EXPECT_EQ(out.verts[3].pos[0], 0.0f);
@@ -374,7 +374,7 @@ TEST(Spline, SummationOrderFollowsTheReference) {
             writeF(mem, a + 8, zs[v]);
         }
     TessOutput out;
-    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 13), out));
+    ASSERT_TRUE(tessellatePatch(mem, st, patch(false, 4, 4, 13), geo::AccuracyProfile::ppsspp(), out));
     ASSERT_EQ(out.verts.size(), 14u * 14u);
     const float inv = 1.0f / 13.0f;
     float wu[4], wv[4];

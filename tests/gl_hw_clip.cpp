@@ -138,7 +138,7 @@ gl::Geometry cpuGeometry(const GeState& st, const Scene& sc, const std::vector<u
     p.vtype = st.op(GE_CMD_VTYPE);
     p.vertexAddr = base;
     p.indexAddr = ibase;
-    gl::VertexPipeline vp;
+    gl::VertexPipeline vp{geo::AccuracyProfile::ppsspp()};
     gl::Geometry g;
     std::string err;
     EXPECT_TRUE(vp.processPrim(mem, st, p, g, &err)) << err;
@@ -610,7 +610,7 @@ TEST(GlHwClip, LinksWithTheFragmentShaders) {
         sc.cle = i % 3 != 2;
         const GeState st = sceneState(sc);
         const sg::HostCaps caps = H->ctx->caps().hostCaps(false, true);
-        const sg::DrawFlags flags = sg::DrawFlags::fromState(st);
+        const sg::DrawFlags flags = sg::DrawFlags::fromState(st, ge::geo::AccuracyProfile::ppsspp());
         const sg::PipelineKeys keys = sg::keysFromState(st, flags, caps, false);
         std::string fs, log;
         ASSERT_TRUE(sg::generateFragmentShader(keys.fs, caps, fs, &log)) << log;

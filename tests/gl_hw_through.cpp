@@ -160,7 +160,7 @@ gl::Geometry cpuGeometry(const GeState& st, const Scene& sc, const std::vector<u
     p.vtype = st.op(GE_CMD_VTYPE);
     p.vertexAddr = base;
     p.indexAddr = ibase;
-    gl::VertexPipeline vp;
+    gl::VertexPipeline vp{geo::AccuracyProfile::ppsspp()};
     gl::Geometry g;
     std::string err;
     EXPECT_TRUE(vp.processPrim(mem, st, p, g, &err)) << err;

@@ -18,6 +18,10 @@ namespace ge::gltest {
 namespace {
 
 namespace sg = shadergen;
+
+// The draw flags of `st` with the ppsspp profile (the reference's alpha-test rules on).
+sg::DrawFlags flags(const GeState& st) { return sg::DrawFlags::fromState(st, geo::AccuracyProfile::ppsspp()); }
+
 namespace fs = std::filesystem;
 
 fs::path freshDir(const char* name) {
@@ -58,22 +62,22 @@ TEST(GlShaderKeys, StateToKeysDecidesDestinationReads) {
     st.regs[GE_CMD_FPF] = (uint32_t(GE_CMD_FPF) << 24) | GE_FORMAT_8888;
     sg::HostCaps caps;
     caps.fbFetch = 1;
-    sg::PipelineKeys k = sg::keysFromState(st, sg::DrawFlags::fromState(st), caps, false);
+    sg::PipelineKeys k = sg::keysFromState(st, flags(st), caps, false);
     EXPECT_EQ(k.fs.dstRead, sg::DstRead::None);  // nothing reads the destination
     EXPECT_FALSE(k.ff.colorMask[3]);              // no stencil: the alpha byte is kept
     st.regs[GE_CMD_ABE] = (uint32_t(GE_CMD_ABE) << 24) | 1;
-    k = sg::keysFromState(st, sg::DrawFlags::fromState(st), caps, false);
+    k = sg::keysFromState(st, flags(st), caps, false);
     EXPECT_EQ(k.fs.dstRead, sg::DstRead::FbFetch);
-    k = sg::keysFromState(st, sg::DrawFlags::fromState(st), caps, true);
+    k = sg::keysFromState(st, flags(st), caps, true);
     EXPECT_EQ(k.fs.dstRead, sg::DstRead::Texture);  // baseline
     // A partial PMSK needs the destination even without blending.
     st.regs[GE_CMD_ABE] = (uint32_t(GE_CMD_ABE) << 24);
     st.regs[GE_CMD_PMSK1] = (uint32_t(GE_CMD_PMSK1) << 24) | 0x0F;
-    k = sg::keysFromState(st, sg::DrawFlags::fromState(st), caps, false);
+    k = sg::keysFromState(st, flags(st), caps, false);
     EXPECT_EQ(k.fs.dstRead, sg::DstRead::FbFetch);
     // A whole protected channel is a plain colour mask.
     st.regs[GE_CMD_PMSK1] = (uint32_t(GE_CMD_PMSK1) << 24) | 0xFF;
-    k = sg::keysFromState(st, sg::DrawFlags::fromState(st), caps, false);
+    k = sg::keysFromState(st, flags(st), caps, false);
     EXPECT_EQ(k.fs.dstRead, sg::DstRead::None);
     EXPECT_FALSE(k.ff.colorMask[0]);
     EXPECT_TRUE(k.ff.colorMask[1]);

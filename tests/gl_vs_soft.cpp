@@ -25,15 +25,19 @@ struct Frame {
 };
 
 // Runs `build` on a fresh Memory with the given backend; returns the whole of VRAM.
-bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& out, std::string& err) {
+bool renderWith(bool gl, const std::function<void(ListBuilder&)>& build, Frame& out, std::string& err,
+                const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp()) {
     Memory mem;
     std::unique_ptr<Renderer> r;
     if (gl) {
-        r = gl::createGlRenderer(mem, gl::GlOptions{}, err);
+        gl::GlOptions go;
+        go.accuracy = acc;
+        r = gl::createGlRenderer(mem, go, err);
         if (!r) return false;
     } else {
         soft::SoftOptions so;
         so.threads = 1;
+        so.accuracy = acc;
         r = soft::createSoftRenderer(mem, so);
     }
     out.vram = runListVram(mem, *r, build);
@@ -82,11 +86,12 @@ void compare(const Frame& a, const Frame& b, int& maxDiff, size_t& differing) {
     }
 }
 
-void expectSame(const std::function<void(ListBuilder&)>& build, int allowedMax, size_t allowedBytes) {
+void expectSame(const std::function<void(ListBuilder&)>& build, int allowedMax, size_t allowedBytes,
+                const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp()) {
     Frame g, s;
     std::string err;
-    if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
-    renderWith(false, build, s, err);
+    if (!renderWith(true, build, g, err, acc)) GTEST_SKIP() << "no GL context: " << err;
+    renderWith(false, build, s, err, acc);
     int maxDiff;
     size_t differing;
     compare(g, s, maxDiff, differing);
@@ -165,11 +170,14 @@ TEST(GlVsSoft, ZeroAreaTrianglesAreIdentical) {
         for (int i = 0; i < 5; ++i) v[i].x = strip[i][0], v[i].y = strip[i][1], v[i].color = 0xFF00C000u;
         b.drawArrayData(GE_PRIM_TRIANGLE_STRIP, vtype, 5, nullptr, packVertices(vtype, v, 5).data());
     };
-    expectSame(build, 0, 0);
+    // Profile ppsspp (AccuracyProfile::zeroAreaTriangles; the psp profile draws nothing of them:
+    // tests/gl_accuracy_profiles.cpp).
+    const geo::AccuracyProfile acc = geo::AccuracyProfile::ppsspp();
+    expectSame(build, 0, 0, acc);
     // The software model did draw pixels of the diagonal (the reference's rule, docs/ge-rules.md §8.11).
     Frame s;
     std::string err;
-    ASSERT_TRUE(renderWith(false, build, s, err)) << err;
+    ASSERT_TRUE(renderWith(false, build, s, err, acc)) << err;
     size_t drawn = 0;
     for (int i = 0; i < 48; ++i) drawn += readLE32(&s.vram[(size_t(i) * 64 + size_t(i)) * 4]) != 0 ? 1 : 0;
     EXPECT_GT(drawn, 0u);
@@ -243,8 +251,8 @@ TEST(GlVsSoft, NearClippingWhateverCleSays) {
     }
 }
 
-// The reference's skipped alpha test (geometry/reference_rules.h) on both backends: entry-0
-// texels are written only when the palette ANDs to non-zero and the vertex alpha is 255.
+// The reference's skipped alpha test (geometry/reference_rules.h; profile ppsspp) on both backends:
+// entry-0 texels are written only when the palette ANDs to non-zero and the vertex alpha is 255.
 TEST(GlVsSoft, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
     for (u32 entry0 : {0x00000001u, 0x00000000u}) {
         for (u8 alpha : {u8(255), u8(254)}) {
@@ -252,8 +260,9 @@ TEST(GlVsSoft, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
             auto build = [&](ListBuilder& b) { testscene::skippedAlphaTestScene(b, entry0, alpha); };
             Frame g, s;
             std::string err;
-            if (!renderWith(true, build, g, err)) GTEST_SKIP() << "no GL context: " << err;
-            ASSERT_TRUE(renderWith(false, build, s, err));
+            const geo::AccuracyProfile acc = geo::AccuracyProfile::ppsspp();
+            if (!renderWith(true, build, g, err, acc)) GTEST_SKIP() << "no GL context: " << err;
+            ASSERT_TRUE(renderWith(false, build, s, err, acc));
             const u32 want = entry0 && alpha == 255 ? 0x000001u : 0u;
             EXPECT_EQ(readLE32(&g.vram[0]) & 0xFFFFFF, want);
             EXPECT_EQ(readLE32(&s.vram[0]) & 0xFFFFFF, want);

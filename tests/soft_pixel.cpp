@@ -421,7 +421,7 @@ TEST(SoftRobustness, FragmentsOutsideBuffersAreDropped) {
     rig.set(GE_CMD_ZBP, 0x1FFFC0);  // 32 depth pixels
     rig.set(GE_CMD_ZTE, 1);
     rig.set(GE_CMD_ZTEST, 1);
-    PixelState ps = buildPixelState(rig.st, rig.mem, *rig.cache, false);
+    PixelState ps = buildPixelState(rig.st, rig.mem, *rig.cache, geo::AccuracyProfile::ppsspp(), false);
     EXPECT_EQ(ps.fbMaxY, 1);
     std::vector<geo::Fragment> fs = {PixelRig::frag(0, 0, 1, 2, 3, 4), PixelRig::frag(63, 0, 1, 2, 3, 4),
                                 PixelRig::frag(64, 0, 1, 2, 3, 4), PixelRig::frag(0, 1, 1, 2, 3, 4),
@@ -464,9 +464,9 @@ TEST(SoftThreads, DisjointRowsFromSeveralThreadsMatchOneThread) {
     PixelRig one, many;
     setup(one);
     setup(many);
-    PixelState ps1 = buildPixelState(one.st, one.mem, *one.cache, true);
+    PixelState ps1 = buildPixelState(one.st, one.mem, *one.cache, geo::AccuracyProfile::ppsspp(), true);
     for (auto& r : rows) shadeFragments(ps1, r.data(), r.size());
-    PixelState psN = buildPixelState(many.st, many.mem, *many.cache, true);
+    PixelState psN = buildPixelState(many.st, many.mem, *many.cache, geo::AccuracyProfile::ppsspp(), true);
     std::vector<std::thread> threads;
     for (auto& r : rows) threads.emplace_back([&psN, &r] { shadeFragments(psN, r.data(), r.size()); });
     for (auto& t : threads) t.join();

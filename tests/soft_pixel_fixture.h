@@ -59,11 +59,11 @@ struct PixelRig {
     }
 
     void draw(const geo::Fragment& f, bool texture = false) {
-        PixelState ps = buildPixelState(st, mem, *cache, texture);
+        PixelState ps = buildPixelState(st, mem, *cache, geo::AccuracyProfile::ppsspp(), texture);
         shadeFragments(ps, &f, 1);
     }
     void draw(const std::vector<geo::Fragment>& fs, bool texture = false) {
-        PixelState ps = buildPixelState(st, mem, *cache, texture);
+        PixelState ps = buildPixelState(st, mem, *cache, geo::AccuracyProfile::ppsspp(), texture);
         shadeFragments(ps, fs.data(), fs.size());
     }
 

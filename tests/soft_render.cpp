@@ -211,7 +211,8 @@ TEST(SoftRender, NearVertexDroppedWithoutCleClippedWithIt) {
 // 8888 frame at VRAM offset 0: the rules are checked on the path real dumps take.
 struct NearClipRender {
     Memory mem{16u << 20};
-    explicit NearClipRender(const std::function<void(ListBuilder&)>& build) {
+    explicit NearClipRender(const std::function<void(ListBuilder&)>& build,
+                            const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp()) {
         Memory src{16u << 20};
         dump::DumpWriter w;
         DumpRecorder rec(src, w);
@@ -226,6 +227,7 @@ struct NearClipRender {
         EXPECT_TRUE(rec.warnings().empty());
         SoftOptions o;
         o.threads = 1;
+        o.accuracy = acc;
         auto r = createSoftRenderer(mem, o);
         GeEngine eng(mem, r.get());
         dump::ReplayResult res;
@@ -267,7 +269,8 @@ TEST(SoftRender, NearClippedFanFollowsTheReferenceVertexOrder) {
 }
 
 // The reference drops an alpha test GREATER 0 for a CLUT texture whose used entries AND to a
-// non-zero value when every vertex alpha is 255 (geometry/reference_rules.h referenceSkipsAlphaTest).
+// non-zero value when every vertex alpha is 255 (geometry/reference_rules.h referenceSkipsAlphaTest;
+// profile ppsspp, AccuracyProfile::clutSkipsAlphaTest).
 TEST(SoftRender, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
     struct Case {
         u32 entry0;
@@ -276,7 +279,8 @@ TEST(SoftRender, ReferenceSkipsTheAlphaTestForClutTexturesItTakesAsOpaque) {
     };
     for (const Case& c : {Case{0x00000001, 255, 0x000001}, Case{0x00000000, 255, 0}, Case{0x00000001, 254, 0}}) {
         SCOPED_TRACE(testing::Message() << "entry0 " << c.entry0 << " vertex alpha " << int(c.vertexAlpha));
-        NearClipRender r([&](ListBuilder& b) { testscene::skippedAlphaTestScene(b, c.entry0, c.vertexAlpha); });
+        NearClipRender r([&](ListBuilder& b) { testscene::skippedAlphaTestScene(b, c.entry0, c.vertexAlpha); },
+                         geo::AccuracyProfile::ppsspp());
         EXPECT_EQ(r.rgb(0, 0), c.zeroTexel);
         EXPECT_EQ(r.rgb(1, 0), 0x0000FFu);  // red
         EXPECT_EQ(r.rgb(3, 3), c.zeroTexel);

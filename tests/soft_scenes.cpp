@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The project's own scenes (dumps/*.ppdmp) rendered by the software model must match the checked-in
 // expected images (dumps/expected/NAME-soft.png) pixel for pixel: the model is bit-exact and
-// deterministic. After an intended change of the model, regenerate the images with
+// deterministic. The images are the ppsspp accuracy profile's (geometry/accuracy_profile.h): the
+// model as it was before the profiles, bit for bit. After an intended change of the model,
+// regenerate the images with
 //   GE2GL_UPDATE_EXPECTED=1 ./build/tests/test_soft --gtest_filter='Scenes*'
 // and review the differences before committing them.
 #include <gtest/gtest.h>
@@ -29,6 +31,7 @@ TEST(Scenes, SoftwareModelMatchesExpectedImages) {
             tools::RenderOptions opt;
             opt.backend = "soft";
             opt.threads = threads;
+            opt.accuracy = "ppsspp";
             tools::RenderOutput out;
             std::string err;
             ASSERT_TRUE(tools::renderDumpFile(e.path().string(), opt, out, err)) << err;

@@ -245,3 +245,42 @@ TEST(Json, MergeOfShardFilesGivesTheseBytes) {
     EXPECT_FALSE(fs::exists(t / "x.json"));
     fs::remove_all(t);
 }
+
+// compare's --accuracy is recorded as "accuracy" (after "backend"), read back, and carried by
+// merge; shards of different profiles are not one run. Files written before the profiles have
+// no "accuracy" and read back with an empty one.
+TEST(Json, CompareRecordsTheAccuracyProfile) {
+    tools::CompareReport r;
+    r.backend = "soft";
+    r.accuracy = "ppsspp";
+    tools::CompareRow row;
+    row.index = 1, row.name = "a", row.mse = 0, row.psnr = 0;
+    r.rows.push_back(row);
+    r.times = false;
+    const std::string text = tools::compareJson(r);
+    EXPECT_NE(text.find("\"backend\": \"soft\",\n  \"accuracy\": \"ppsspp\""), std::string::npos) << text;
+    tools::CompareReport back;
+    std::string err;
+    ASSERT_TRUE(tools::parseCompareJson(text, back, err)) << err;
+    EXPECT_EQ(back.accuracy, "ppsspp");
+    EXPECT_EQ(tools::compareJson(back), text);
+    ASSERT_TRUE(tools::parseCompareJson("{\"backend\": \"soft\", \"results\": []}", back, err)) << err;
+    EXPECT_EQ(back.accuracy, "");
+    EXPECT_FALSE(tools::parseCompareJson("{\"backend\": \"soft\", \"accuracy\": 1, \"results\": []}", back, err));
+    EXPECT_NE(err.find("\"accuracy\" is not a string"), std::string::npos) << err;
+
+    std::vector<tools::CompareReport> shards(2, r);
+    for (int i = 0; i < 2; ++i) {
+        shards[size_t(i)].sharded = true;
+        shards[size_t(i)].shard.index = u64(i + 1);
+        shards[size_t(i)].shard.count = 2;
+        shards[size_t(i)].dumps = 2;
+        shards[size_t(i)].rows[0].index = u64(i + 1);
+    }
+    tools::CompareReport merged;
+    ASSERT_TRUE(tools::mergeReports(shards, {"s1.json", "s2.json"}, merged, err)) << err;
+    EXPECT_EQ(merged.accuracy, "ppsspp");
+    shards[1].accuracy = "psp";
+    EXPECT_FALSE(tools::mergeReports(shards, {"s1.json", "s2.json"}, merged, err));
+    EXPECT_NE(err.find("accuracy"), std::string::npos) << err;
+}

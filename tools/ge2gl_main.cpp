@@ -289,6 +289,13 @@ struct Cli {
         declareFuzzMergeReport();
     }
 
+    // geometry/accuracy_profile.h; docs/accuracy.md "Accuracy profiles".
+    void addAccuracyOpt(CLI::App* sc) {
+        sc->add_option("--accuracy", ropt.accuracy,
+                       "psp (what the GE does: every hardware-measured rule; default) | ppsspp (PPSSPP's software "
+                       "renderer's pixels, its optimisation artefacts included: compare against PPSSPP references)")
+            ->check(CLI::IsMember({"psp", "ppsspp"}));
+    }
     void addBackendOpts(CLI::App* sc) {
         sc->add_option("--replay-timing", replayTiming,
                        "when the GE runs during replay: ppsspp (as PPSSPP's player: at its sync points; "
@@ -299,6 +306,7 @@ struct Cli {
                        "with a warning (default 166.7: 10 frames)")
             ->check(CLI::Range(0.0, 1e7));
         sc->add_option("--backend", ropt.backend, "soft | gl | null")->check(CLI::IsMember({"soft", "gl", "null"}));
+        addAccuracyOpt(sc);
         sc->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
         sc->add_option("--context", ropt.glContext,
                        "GL context: osmesa | egl | null (GL calls do nothing: the translator's CPU cost alone)")
@@ -432,6 +440,10 @@ struct Cli {
                                                 "gl) and --ref-backend, compared exactly; failing cases minimised");
         fuzz->add_option("--ref-backend", fuzzOpt.refBackend, "reference backend (default soft)")
             ->check(CLI::IsMember({"soft", "gl", "null"}));
+        fuzz->add_option("--ref-accuracy", fuzzOpt.refAccuracy,
+                         "accuracy profile of the reference side (default: --accuracy's); with --accuracy psp "
+                         "--ref-accuracy ppsspp the divergences are those of the profiles' switches")
+            ->check(CLI::IsMember({"psp", "ppsspp"}));
         fuzz->add_option("--seed", fuzzOpt.seed, "first seed (case i uses seed + i; default 1)");
         fuzz->add_option("--count", fuzzOpt.count, "cases (default 100)")->check(wholeNumber(u64(1) << 40));
         fuzz->add_option("--out", fuzzOpt.outDir, "write minimised failing cases as DIR/case-SEED.ppdmp");
@@ -466,6 +478,7 @@ struct Cli {
         report->add_option("--title", reportArgs.title, "page title");
         report->add_option("--top", reportArgs.top, "blame rows per dump (default 10)")->check(CLI::Range(1, 1000));
         report->add_option("--threads", ropt.threads, "software model threads (0 = all cores)")->check(wholeNumber(256));
+        addAccuracyOpt(report);
         report->add_option("--context", ropt.glContext, "GL context for a gl run: osmesa | egl")
             ->check(CLI::IsMember({"osmesa", "egl"}));
         report->add_option("--replay-timing", replayTiming, "as given to compare (default ppsspp)")
@@ -529,6 +542,7 @@ int Cli::run() {
         fuzzOpt.render.keepDraw = nullptr;
         fuzzOpt.refKeepDraw = ropt.keepDraw;
         fuzzOpt.backend = fuzz->count("--backend") ? ropt.backend : "gl";
+        if (!fuzz->count("--ref-accuracy")) fuzzOpt.refAccuracy = ropt.accuracy;
         if (!fuzz->count("--threads")) fuzzOpt.render.threads = 1;  // tiny scenes: threads cost more than they give
         return tools::runFuzzCommand(fuzzOpt);
     }

@@ -108,7 +108,7 @@ bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& fl
 // false when it stays on the CPU path.
 bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     const GeState& st = *p.state;
-    shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st);
+    shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st, opt_.accuracy);
     // The colours reaching the fragments only matter to the reference's skipped alpha test;
     // prepare() keeps the draws where that rule could fire on the CPU.
     flags.vertexAlphaFull = true;

@@ -36,7 +36,7 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
       caps_(hostCapsFor(ctx_->caps(), opt)),
       useBarrier_(!opt.baseline && ctx_->caps().textureBarrier),
       programs_(*ctx_, caps_, opt.shaderDumpDir, opt.programCacheDir), textures_(*ctx_),
-      fb_(*ctx_, mem, opt.scale), scale_(fb_.scale()), gpu_(*ctx_), state_(gl_, fb_, scale_) {
+      fb_(*ctx_, mem, opt.scale), scale_(fb_.scale()), gpu_(*ctx_, opt.accuracy), state_(gl_, fb_, scale_) {
     if (hw_) {
         const std::string& r = ctx_->caps().renderer;
         const bool software = r.find("llvmpipe") != std::string::npos || r.find("softpipe") != std::string::npos ||
@@ -131,7 +131,7 @@ void GlRendererImpl::drawPrim(const PrimPacket& p) {
     if (gpuVertices_ && drawPrimOnGpu(p)) return;
     const GeState& st = *p.state;
     std::string err;
-    startDraw(st, shadergen::DrawFlags::fromState(st));
+    startDraw(st, shadergen::DrawFlags::fromState(st, opt_.accuracy));
     if (!pipeline_.processPrim(mem_, st, p, drawGeo_, &err)) noteError(err);
     addDraw();
 }
@@ -140,7 +140,7 @@ void GlRendererImpl::drawPatch(const PatchPacket& p) {
     ++stats_.draws;
     const GeState& st = *p.state;
     std::string err;
-    startDraw(st, shadergen::DrawFlags::fromState(st));
+    startDraw(st, shadergen::DrawFlags::fromState(st, opt_.accuracy));
     if (!pipeline_.processPatch(mem_, st, p, drawGeo_, &err)) noteError(err);
     addDraw();
 }
@@ -181,7 +181,7 @@ void GlRendererImpl::drawImmediate(const ImmPacket& p) {
     const GeState& st = *p.state;
     // AP2 flag bits 11..23 of the first vertex override the state for this primitive (docs/ge-rules.md §3.12).
     const u32 f = p.flags;
-    shadergen::DrawFlags df = shadergen::DrawFlags::fromState(st);
+    shadergen::DrawFlags df = shadergen::DrawFlags::fromState(st, opt_.accuracy);
     df.gouraud = (f >> 18) & 1;
     df.texture = (f >> 21) & 1;
     df.fog = (f >> 22) & 1;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "backend/capabilities.h"
+#include "geometry/accuracy_profile.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
 
@@ -58,6 +59,9 @@ struct GlOptions {
     // evaluation of the software rasteriser's setup; GL 4.0 + ARB_gpu_shader_int64) is available:
     // the path of hosts without it. Additive to the spec, for tests and comparisons.
     bool floatInterpolation = false;
+    // The rules where the PSP and PPSSPP's software renderer differ (geometry/accuracy_profile.h):
+    // the shared geometry's and the shader keys'.
+    geo::AccuracyProfile accuracy = geo::AccuracyProfile::psp();
 };
 
 // The most GL triangles the translator holds on the CPU before it draws them (one batch, or the

@@ -110,7 +110,7 @@ private:
     TextureCache textures_;
     FramebufferManager fb_;
     const int scale_;
-    VertexPipeline pipeline_;
+    VertexPipeline pipeline_{opt_.accuracy};
     GpuVertexPath gpu_;
     GpuDraw gpuDraw_;
     u64 batchGeneration_ = 0;

@@ -23,7 +23,7 @@ const char* cpuReasonName(CpuReason r) {
     }
 }
 
-GpuVertexPath::GpuVertexPath(const GlContext& ctx) : ctx_(ctx) {
+GpuVertexPath::GpuVertexPath(const GlContext& ctx, const geo::AccuracyProfile& acc) : ctx_(ctx), acc_(acc) {
     const GlFuncs& gl = ctx_.f();
     gl.GenBuffers(1, &vtxBuf_);
     gl.BindBuffer(GL_TEXTURE_BUFFER, vtxBuf_);
@@ -80,7 +80,7 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
         return reject(CpuReason::Quad);
     // Whether the alpha test runs can hang on the colours that reach the fragments; when it
     // cannot (the rule is off even with every alpha 255), the vertex shader's colours suffice.
-    if (geo::referenceSkipsAlphaTest(st, texture, true)) return reject(CpuReason::AlphaRule);
+    if (acc_.clutSkipsAlphaTest && geo::referenceSkipsAlphaTest(st, texture, true)) return reject(CpuReason::AlphaRule);
     if (dstTexture) return reject(CpuReason::DstTexture);
     if (!ctx_.f().Uniform4uiv || !ctx_.f().DrawElements) return reject(CpuReason::PrimKind);
 

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
@@ -56,7 +57,8 @@ struct GpuVertexStats {
 
 class GpuVertexPath {
 public:
-    explicit GpuVertexPath(const GlContext& ctx);
+    // `acc`: whether the reference's skipped alpha test can apply (it keeps such draws on the CPU).
+    GpuVertexPath(const GlContext& ctx, const geo::AccuracyProfile& acc);
     ~GpuVertexPath();
     GpuVertexPath(const GpuVertexPath&) = delete;
     GpuVertexPath& operator=(const GpuVertexPath&) = delete;
@@ -78,6 +80,7 @@ private:
     }
 
     const GlContext& ctx_;
+    geo::AccuracyProfile acc_;
     GLuint vtxBuf_ = 0, vtxTex_ = 0, idxBuf_ = 0;
     GpuVertexStats stats_;
     std::vector<u32> rawIndices_;

@@ -85,6 +85,8 @@ struct Geometry {
 // becomes GL triangles in drawing coordinates.
 class VertexPipeline : private geo::PrimitiveSink {
 public:
+    // `acc`: the shared geometry's rules where the PSP and PPSSPP differ (geo::DrawFrontEnd).
+    explicit VertexPipeline(const geo::AccuracyProfile& acc) : frontEnd_(acc) {}
     // Decodes and processes a PRIM draw into `out` (appending). Returns false + err on bad
     // memory (nothing is drawn for that draw). `continuation`: PRIM type 7 (ge-rules.md §3.2).
     bool processPrim(const Memory& mem, const GeState& st, const PrimPacket& p, Geometry& out, std::string* err);

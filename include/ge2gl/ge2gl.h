@@ -60,7 +60,7 @@ extern "C" {
 /* API version: major in bits 31..16, minor in 15..0. A host built against major M works with any
  * library of major M and a minor at least its own. */
 #define GE2GL_API_VERSION_MAJOR 1
-#define GE2GL_API_VERSION_MINOR 5
+#define GE2GL_API_VERSION_MINOR 6
 #define GE2GL_API_VERSION ((uint32_t)((GE2GL_API_VERSION_MAJOR << 16) | GE2GL_API_VERSION_MINOR))
 
 typedef struct ge2gl_context ge2gl_context; /* opaque handle */
@@ -110,6 +110,11 @@ typedef int32_t ge2gl_status;
 /* GL backends' mode (config.gl_mode, API 1.1). */
 #define GE2GL_GL_MODE_EXACT 0 /* the software model's rasteriser arithmetic per pixel, 1x only */
 #define GE2GL_GL_MODE_HW 1    /* native GL rasterisation at config.render_scale */
+
+/* Accuracy profile (config.accuracy, API 1.6; docs/accuracy.md "Accuracy profiles"). */
+#define GE2GL_ACCURACY_PSP 0    /* what the PSP's GE does: every hardware-measured rule (default) */
+#define GE2GL_ACCURACY_PPSSPP 1 /* PPSSPP's software renderer's pixels, its optimisation artefacts
+                                   included (to compare with its renders) */
 
 /* sceGeListSync / sceGeDrawSync peek results. */
 #define GE2GL_LIST_COMPLETED 0
@@ -228,6 +233,10 @@ typedef struct ge2gl_config {
        the thread that runs the GE, with callbacks.user, under the same rules as the other
        callbacks. May be NULL: ge2gl_get_stats counts them and keeps the last message. */
     void (*drop)(void* user, int32_t list_id, uint32_t pc, const char* message);
+    /* API 1.6. GE2GL_ACCURACY_PSP (0, the default, also for hosts built against an older API) or
+       GE2GL_ACCURACY_PPSSPP: which rules the backend follows where the PSP and PPSSPP's software
+       renderer differ. */
+    int32_t accuracy;
 } ge2gl_config;
 
 /* The version of the library actually loaded. */

@@ -147,10 +147,9 @@ int floorOf(const std::string& test, const std::string& backend) {
         {{"textures/rotate", "soft"}, 96},   {{"textures/rotate", "gl"}, 96},
         {{"filtering/nearest", "soft"}, 541}, {{"filtering/nearest", "gl"}, 541},
         {{"filtering/linear", "soft"}, 541},  {{"filtering/linear", "gl"}, 541},
-        // of 368: the bilinear position's rounding (the reference renderer's rule kept where it
-        // disagrees with these values: docs/conformance.md)
-        {{"filtering/precisionlinear2d", "soft"}, 320},  {{"filtering/precisionlinear2d", "gl"}, 320},
-        {{"filtering/precisionlinear3d", "soft"}, 320},  {{"filtering/precisionlinear3d", "gl"}, 320},
+        // the bilinear position truncated (the psp profile's AccuracyProfile::pspBilinearTruncation)
+        {{"filtering/precisionlinear2d", "soft"}, 368},  {{"filtering/precisionlinear2d", "gl"}, 368},
+        {{"filtering/precisionlinear3d", "soft"}, 368},  {{"filtering/precisionlinear3d", "gl"}, 368},
         {{"filtering/precisionnearest2d", "soft"}, 368}, {{"filtering/precisionnearest2d", "gl"}, 368},
         {{"filtering/precisionnearest3d", "soft"}, 368}, {{"filtering/precisionnearest3d", "gl"}, 368},
         {{"commands/blocktransfer", "soft"}, 23}, {{"commands/blocktransfer", "gl"}, 23},

@@ -2,6 +2,7 @@
 #include "tests/conformance/gu_sim.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "backend/factory.h"
@@ -12,6 +13,16 @@ bool GuSim::create(const std::string& backend, std::string& err) {
     backend_ = backend;
     mem_ = std::make_unique<Memory>();
     ge::backend::BackendOptions bo;
+    // The hardware values are the PSP's: the psp profile (geometry/accuracy_profile.h). For
+    // measuring the other profile's counts (docs/conformance.md), GE2GL_CONFORMANCE_ACCURACY=ppsspp;
+    // the floors are the psp profile's.
+    bo.accuracy = ge::geo::AccuracyProfile::psp();
+    if (const char* acc = std::getenv("GE2GL_CONFORMANCE_ACCURACY")) {
+        if (!ge::geo::AccuracyProfile::fromName(acc, bo.accuracy)) {
+            err = std::string("GE2GL_CONFORMANCE_ACCURACY: unknown profile ") + acc;
+            return false;
+        }
+    }
     if (backend == "soft") {
         bo.kind = ge::backend::BackendKind::Soft;
         bo.threads = 1;

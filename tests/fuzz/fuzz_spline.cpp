@@ -76,7 +76,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     geo::TessOutput out;
     std::string err;
     u64 sum = 0;
-    if (geo::tessellatePatch(mem, st, p, out, &err)) {
+    if (geo::tessellatePatch(mem, st, p, geo::AccuracyProfile::ppsspp(), out, &err)) {
         for (u32 i : out.indices)
             if (i >= out.verts.size()) __builtin_trap();  // an index outside the output
         const geo::TransformState ts = geo::makeTransformState(st, p.vtype, true, true);

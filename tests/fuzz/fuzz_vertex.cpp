@@ -154,7 +154,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         sum += sink.sum + keep.size();
 #ifdef GE2GL_HAVE_GL
         // The GL translator's vertex pipeline, twice: the second as a PRIM type 7 continuation.
-        gl::VertexPipeline pipeline;
+        gl::VertexPipeline pipeline{geo::AccuracyProfile::ppsspp()};
         pipeline.setRecords((flags >> 5) & 1);
         PrimPacket p;
         p.state = &st;

@@ -137,6 +137,7 @@ std::string compareJson(const CompareReport& r) {
     const CompareSummary s = summarize(r.rows);
     Json j;
     j["backend"] = r.backend;
+    if (!r.accuracy.empty()) j["accuracy"] = r.accuracy;
     if (r.backend == "gl") {
         j["gl_mode"] = r.glMode;
         j["scale"] = r.scale;
@@ -185,6 +186,10 @@ bool parseCompareJson(const std::string& text, CompareReport& out, std::string& 
     if (!results || !results->is_array()) return err = "no \"results\" array", false;
     out.backend = backend->get<std::string>();
     out.times = member(root, "median_seconds") != nullptr;
+    if (const Json* a = member(root, "accuracy")) {
+        if (!a->is_string()) return err = "\"accuracy\" is not a string", false;
+        out.accuracy = a->get<std::string>();
+    }
     if (const Json* m = member(root, "gl_mode")) {
         if (!m->is_string()) return err = "\"gl_mode\" is not a string", false;
         out.glMode = m->get<std::string>();
@@ -263,8 +268,10 @@ bool mergeReports(const std::vector<CompareReport>& reports, const std::vector<s
             return err = name + " belongs to a run of " + std::to_string(r.dumps) + " dumps, " + files[0] + " to one of " +
                          std::to_string(first.dumps),
                    false;
-        if (r.glMode != first.glMode || r.scale != first.scale || r.refBackend != first.refBackend)
-            return err = name + " and " + files[0] + " were rendered with different options (gl_mode, scale or ref_backend)",
+        if (r.glMode != first.glMode || r.scale != first.scale || r.refBackend != first.refBackend ||
+            r.accuracy != first.accuracy)
+            return err = name + " and " + files[0] +
+                         " were rendered with different options (gl_mode, scale, ref_backend or accuracy)",
                    false;
         if (r.times != first.times)
             return err = "--json-no-times was given for " + (r.times ? files[0] : name) + " but not for " +
@@ -285,6 +292,7 @@ bool mergeReports(const std::vector<CompareReport>& reports, const std::vector<s
                false;
     out = CompareReport();
     out.backend = first.backend;
+    out.accuracy = first.accuracy;
     out.glMode = first.glMode;
     out.scale = first.scale;
     out.refBackend = first.refBackend;
@@ -373,6 +381,7 @@ int runCompare(const CompareArgs& a) {
     const std::vector<IndexedDump> mine = a.sharded ? shardDumps(all, a.shard) : all;
     CompareReport rep;
     rep.backend = opt.backend;
+    rep.accuracy = opt.accuracy;
     rep.glMode = opt.glMode;
     rep.scale = opt.scale;
     rep.refBackend = a.refBackend;

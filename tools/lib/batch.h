@@ -66,6 +66,9 @@ struct CompareRow {
 
 struct CompareReport {
     std::string backend;
+    // --accuracy (geometry/accuracy_profile.h names); empty when read from a file written before
+    // the profiles existed (its renders followed neither profile exactly).
+    std::string accuracy;
     std::string glMode = "exact";  // written for backend gl only
     int scale = 1;                 // written for backend gl only
     std::string refBackend;        // --ref-backend, empty with --ref-dir

@@ -369,9 +369,17 @@ struct FuzzSides {
 
 namespace {
 
+// A side's name in causes: its backend, and its profile when the two sides' differ.
+std::string sideName(const FuzzOptions& o, int side) {
+    const std::string& acc = side == 1 && !o.refAccuracy.empty() ? o.refAccuracy : o.render.accuracy;
+    const bool differ = !o.refAccuracy.empty() && o.refAccuracy != o.render.accuracy;
+    return (side == 0 ? o.backend : o.refBackend) + (differ ? "/" + acc : std::string());
+}
+
 RenderOptions sideOptions(const FuzzOptions& o, int side) {
     RenderOptions ro = o.render;
     ro.backend = side == 0 ? o.backend : o.refBackend;
+    if (side == 1 && !o.refAccuracy.empty()) ro.accuracy = o.refAccuracy;
     ro.scale = 1;
     ro.replayEnd = 0;
     ro.keepDraw = side == 1 ? o.refKeepDraw : nullptr;
@@ -430,8 +438,8 @@ bool fuzzCompare(const dump::Dump& d, const FuzzOptions& o, FuzzSides* sides, bo
     if (n) {
         const bool rgb = fmt == GE_FORMAT_565 || ((fa ^ fb) & (fmt == GE_FORMAT_8888 ? 0x00FFFFFFu : fmt == GE_FORMAT_5551 ? 0x7FFFu : 0x0FFFu));
         cause = "colour (" + std::string(bufferFormatName(fmt)) + (rgb ? ", RGB" : ", alpha/stencil only") + ") at (" +
-                std::to_string(fx) + "," + std::to_string(fy) + "): " + o.backend + " " + hex(fa, bpp * 2) + " vs " +
-                o.refBackend + " " + hex(fb, bpp * 2) + ", " + std::to_string(n) + " pixels differ";
+                std::to_string(fx) + "," + std::to_string(fy) + "): " + sideName(o, 0) + " " + hex(fa, bpp * 2) +
+                " vs " + sideName(o, 1) + " " + hex(fb, bpp * 2) + ", " + std::to_string(n) + " pixels differ";
         if (mse >= 0) {
             char buf[64];
             std::snprintf(buf, sizeof buf, ", MSE %.4f > %.4f", mse, o.maxMse);
@@ -446,8 +454,8 @@ bool fuzzCompare(const dump::Dump& d, const FuzzOptions& o, FuzzSides* sides, bo
                 if (!n++) fx = int(i % 480), fy = int(i / 480), fa = s.depth[0][i], fb = s.depth[1][i];
             }
         if (n) {
-            cause = "depth at (" + std::to_string(fx) + "," + std::to_string(fy) + "): " + o.backend + " " +
-                    std::to_string(fa) + " vs " + o.refBackend + " " + std::to_string(fb) + ", " + std::to_string(n) +
+            cause = "depth at (" + std::to_string(fx) + "," + std::to_string(fy) + "): " + sideName(o, 0) + " " +
+                    std::to_string(fa) + " vs " + sideName(o, 1) + " " + std::to_string(fb) + ", " + std::to_string(n) +
                     " pixels differ";
             differs = true;
         }
@@ -624,13 +632,15 @@ int runFuzzCommand(const FuzzOptions& o) {
     }
     const double rate = s.seconds > 0 ? double(s.cases) / s.seconds : 0;
     std::printf("fuzz %s vs %s, seeds %llu-%llu: %llu cases, %llu divergences, %llu errors, %.2f s, %.1f cases/s\n",
-                o.backend.c_str(), o.refBackend.c_str(), (unsigned long long)o.seed,
+                sideName(o, 0).c_str(), sideName(o, 1).c_str(), (unsigned long long)o.seed,
                 (unsigned long long)(o.seed + (o.count ? o.count - 1 : 0)), (unsigned long long)s.cases,
                 (unsigned long long)s.divergences, (unsigned long long)s.errors, s.seconds, rate);
     if (!o.jsonPath.empty()) {
         Json j;
         j["backend"] = o.backend;
         j["refBackend"] = o.refBackend;
+        j["accuracy"] = o.render.accuracy;
+        j["refAccuracy"] = o.refAccuracy.empty() ? o.render.accuracy : o.refAccuracy;
         j["seed"] = o.seed;
         j["cases"] = s.cases;
         j["divergences"] = s.divergences;

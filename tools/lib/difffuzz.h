@@ -45,6 +45,8 @@ dump::Dump recordFuzzCase(const FuzzCase& c);
 struct FuzzOptions {
     RenderOptions render;  // base options (backend names are replaced by the two below)
     std::string backend = "gl", refBackend = "soft";
+    // The reference side's accuracy profile (the first side's is render.accuracy); empty: the same.
+    std::string refAccuracy;
     u64 seed = 1, count = 100;
     std::string outDir;    // minimised failing cases go here (none written when empty)
     std::string jsonPath;

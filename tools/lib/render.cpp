@@ -13,6 +13,10 @@ namespace ge::tools {
 
 backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
     backend::BackendOptions bo;
+    if (!geo::AccuracyProfile::fromName(opt.accuracy.c_str(), bo.accuracy)) {
+        err = "unknown accuracy profile '" + opt.accuracy + "' (use psp or ppsspp)";
+        return {};
+    }
     if (opt.backend == "null") {
         bo.kind = backend::BackendKind::Null;
     } else if (opt.backend == "soft") {

@@ -15,6 +15,9 @@ namespace ge::tools {
 
 struct RenderOptions {
     std::string backend = "soft";  // "soft" | "gl" | "null"
+    // "psp" | "ppsspp" (geometry/accuracy_profile.h): what the GE does, or PPSSPP's software
+    // renderer's pixels (its frametest references).
+    std::string accuracy = "psp";
     u64 replayEnd = 0;             // stop after the Nth draw (0 = all)
     dump::ReplayTiming replayTiming = dump::ReplayTiming::Ppsspp;  // when the GE runs (player.h)
     double maxGeMs = dump::ReplayOptions::kDefaultMaxGeMs;  // GE-time budget (player.h), 0 = none

@@ -97,6 +97,7 @@ void renderPage(const CompareReport& run, const ReportArgs& a, const CompareRow&
     }
     RenderOptions ro = a.render;
     ro.backend = run.backend;
+    if (!run.accuracy.empty()) ro.accuracy = run.accuracy;  // the run's profile; --accuracy for older files
     ro.glMode = run.glMode;
     ro.scale = run.scale;
     dump::Dump d;
@@ -369,6 +370,7 @@ int runReport(const ReportArgs& a) {
     const CompareSummary s = summarize(run.rows);
     std::string how = run.backend;
     if (run.backend == "gl") how += " (" + run.glMode + (run.scale > 1 ? ", scale " + std::to_string(run.scale) : "") + ")";
+    if (!run.accuracy.empty()) how += ", accuracy " + run.accuracy;
     how += run.refBackend.empty() ? " against reference pictures" : " against the " + run.refBackend + " backend";
     const std::string title = a.title.empty() ? "ge2gl report: " + how : a.title;
 

@@ -151,7 +151,9 @@ bool stepDump(const std::string& path, const StepOptions& opt, StepResult& out, 
         r += "\n== disassembly ==\n" + debug::disassembly(mem, pc - 16, 16, pc);
         std::vector<debug::DrawVertex> verts;
         std::string verr;
-        if (op == GE_CMD_PRIM && debug::drawVertices(mem, eng.state(), word, verts, verr)) {
+        geo::AccuracyProfile acc;
+        geo::AccuracyProfile::fromName(opt.render.accuracy.c_str(), acc);  // checked by createBackend above
+        if (op == GE_CMD_PRIM && debug::drawVertices(mem, eng.state(), word, acc, verts, verr)) {
             r += fmt("\n== vertices (%zu) ==\n", verts.size());
             r += "   #        pos (decoded)              uv           colour  ->   screen x, y, z        s, t       colour out\n";
             for (size_t i = 0; i < verts.size(); ++i) {

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// The accuracy profile: one named switch per known divergence between what a PSP's GE does and
+// what PPSSPP's software renderer (GPU/Software, c09e6bddaa, x86-64 build) does. Two profiles:
+//   psp()    — every hardware-measured rule taken, PPSSPP's optimisation artefacts off;
+//   ppsspp() — bit-compatible with PPSSPP's software renderer, artefacts included (the shared
+//              frametests are its renders).
+// Everything both profiles share is not here: a switch exists only where the two disagree.
+// The profile enters each backend at creation (backend/factory.h BackendOptions::accuracy) and
+// the code that applies a rule reads the switch it needs; nothing compares profiles. Which
+// frametests and conformance checkpoints each switch moves: docs/accuracy.md "Accuracy profiles".
+#pragma once
+#include <cstring>
+
+namespace ge::geo {
+
+struct AccuracyProfile {
+    // PPSSPP's implicit "alpha != 0" test: a source-alpha blend (A = As, B = 1 − As) with no
+    // depth write, no effective stencil test and an off or always-true alpha test drops alpha-0
+    // fragments (Rasterizer.cpp DetectStateOptimizations, OPTIMIZED_ALPHATEST_ON;
+    // geometry/reference_rules.h referenceDropsZeroAlpha). The GE runs no such test (manual §8:
+    // the alpha test is the ATE register's): with dithering the dither value still moves the
+    // pixel. Moves Monster Hunter 3rd's HUD gradient.
+    bool implicitAlphaNonZeroTest = false;
+    // PPSSPP's skipped alpha test for CLUT textures whose palette is opaque (or ANDs to non-zero
+    // for reference 0) and all vertex alphas full (DetectStateOptimizations,
+    // OPTIMIZED_ALPHATEST_OFF_NE/GT; referenceSkipsAlphaTest). The GE tests every fragment.
+    // Moves Hokuto no Ken (1.769 → 1.693 with it).
+    bool clutSkipsAlphaTest = false;
+    // PPSSPP's knot setup for a single spline patch open at both ends (SplineCommon.cpp
+    // CalcKnots overwrites the open start's reciprocal 1 with the open end's 1/2): non-Bernstein
+    // weights. The manual's knot vector (§5.2.1) gives Bezier weights (geometry/spline.cpp
+    // splineSpans). Moves GachiTora's text patches (0.1875 → 0.0161 with it).
+    bool splineOpenKnotQuirk = false;
+    // Zero-area triangles are rasterised: PPSSPP submits each triangle in both orders and keeps
+    // samples exactly on the line (TransformUnit::SendTriangle, BinManager::AddTriangle;
+    // geometry/raster.cpp rasterZeroAreaTriangle). The plain reading of the GE (docs/ge-rules.md
+    // §8.11) draws nothing for them. Moves Valkyria Chronicles' strip joins (0.26 → 0.057 with
+    // it), Locoroco, Virtua Tennis.
+    bool zeroAreaTriangles = false;
+    // Transform-mode RECTANGLES reach the screen by the PSP's sprite rule: float24 viewport
+    // arithmetic and the screen position rounded up to the next 1/16 pixel before OFFSETX/Y is
+    // taken off (geometry/transform.cpp projectToScreen; docs/conformance.md "Sprites":
+    // pspautotests filtering/nearest and linear, precision*3d, textures/size, depth/precision).
+    // PPSSPP rounds sprites as any vertex (TransformUnit.cpp ClipToScreen, truncation after the
+    // float offset subtraction). Moves Beam 'em up (0 → 2.43 with it), Valkyria Chronicles,
+    // Frontier Gate, Need for Speed Carbon.
+    bool pspSpritePosition = false;
+    // RECTANGLES draws leave out the pixel whose centre lies on the far edge, odd or not
+    // (pspautotests filtering/precision*2d and *3d: a 2x2 sprite from −8/16 to 1.5 draws pixel 0
+    // only; geometry/raster.cpp rectangleSetup). PPSSPP's 2×2 rectangle walk draws it when it is
+    // the odd pixel of a pair (Rasterizer.cpp DrawRectangle), as it still does for the strip and
+    // fan quads it draws as rectangles in both profiles. No frametest moved.
+    bool spriteFarEdgeExcluded = false;
+    // Bilinear filtering takes the texel position (8 fraction bits) truncated toward zero, as
+    // nearest filtering does (pspautotests filtering/precisionlinear2d and 3d; docs/conformance.md
+    // "What fails"). PPSSPP's x86 sampler JIT rounds it to nearest, ties to even (SamplerX86.cpp
+    // Jit_GetTexelCoordsQuad, CVTPS2DQ; softmodel/sampler.cpp texelFixedRound).
+    bool pspBilinearTruncation = false;
+
+    static constexpr AccuracyProfile psp() {
+        AccuracyProfile a;
+        a.pspSpritePosition = true;
+        a.spriteFarEdgeExcluded = true;
+        a.pspBilinearTruncation = true;
+        return a;
+    }
+    static constexpr AccuracyProfile ppsspp() {
+        AccuracyProfile a;
+        a.implicitAlphaNonZeroTest = true;
+        a.clutSkipsAlphaTest = true;
+        a.splineOpenKnotQuirk = true;
+        a.zeroAreaTriangles = true;
+        return a;
+    }
+
+    constexpr bool operator==(const AccuracyProfile&) const = default;
+
+    // "psp", "ppsspp", or "custom" for another mix of switches (the tools' --accuracy and
+    // compare's JSON carry the names).
+    const char* name() const {
+        if (*this == psp()) return "psp";
+        if (*this == ppsspp()) return "ppsspp";
+        return "custom";
+    }
+    // The profile named `name` ("psp" or "ppsspp"); false for any other name.
+    static bool fromName(const char* name, AccuracyProfile& out) {
+        if (std::strcmp(name, "psp") == 0) {
+            out = psp();
+            return true;
+        }
+        if (std::strcmp(name, "ppsspp") == 0) {
+            out = ppsspp();
+            return true;
+        }
+        return false;
+    }
+};
+
+}  // namespace ge::geo

@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: MIT
+// One scene per switch of geometry/accuracy_profile.h, rendered with both profiles on the
+// software model, GL exact and GL hw (1x): the pixels each profile must give. Every scene fails
+// when its switch is ignored by a backend (the two profiles' expected pixels differ).
+#include <cstring>
+#include <functional>
+#include <string>
+
+#include "backend/factory.h"
+#include "tests/gl_fixture.h"
+#include "tests/reference_quirk_scenes.h"
+#include "tests/screen_frame.h"
+#include "tests/sprite_position_scene.h"
+
+namespace ge::gltest {
+namespace {
+
+using Scene = std::function<void(ListBuilder&)>;
+using Check = std::function<void(const std::vector<u8>& vram)>;
+
+enum class Where { Soft, GlExact, GlHw };
+
+// `scene`'s VRAM on one backend with `acc`; false when the backend cannot start (no GL context).
+bool render(Where w, const geo::AccuracyProfile& acc, const Scene& scene, std::vector<u8>& vram, std::string& err) {
+    Memory mem;
+    backend::BackendOptions bo;
+    bo.accuracy = acc;
+    bo.threads = 1;
+    bo.kind = w == Where::Soft ? backend::BackendKind::Soft : backend::BackendKind::Gl;
+    bo.glMode = w == Where::GlHw ? backend::GlMode::Hw : backend::GlMode::Exact;
+    backend::Backend b = backend::createBackend(mem, bo, err);
+    if (!b) return false;
+    vram = runListVram(mem, *b.renderer, scene);
+    return true;
+}
+
+// Runs `psp` on each backend's render with the psp profile and `ppsspp` with the ppsspp one.
+void checkBothProfiles(const Scene& scene, const Check& psp, const Check& ppsspp) {
+    for (Where w : {Where::Soft, Where::GlExact, Where::GlHw}) {
+        SCOPED_TRACE(w == Where::Soft ? "soft" : w == Where::GlExact ? "GL exact" : "GL hw");
+        for (bool isPsp : {true, false}) {
+            SCOPED_TRACE(isPsp ? "psp" : "ppsspp");
+            std::vector<u8> vram;
+            std::string err;
+            if (!render(w, isPsp ? geo::AccuracyProfile::psp() : geo::AccuracyProfile::ppsspp(), scene, vram, err)) {
+                ASSERT_NE(w, Where::Soft) << err;
+                GTEST_SKIP() << "no GL context: " << err;
+            }
+            (isPsp ? psp : ppsspp)(vram);
+        }
+    }
+}
+
+u32 rgbAt(const std::vector<u8>& vram, int x, int y, int stride) {
+    return readLE32(&vram[(size_t(y) * size_t(stride) + size_t(x)) * 4]) & 0xFFFFFFu;
+}
+
+TEST(AccuracyProfiles, NamesRoundTrip) {
+    geo::AccuracyProfile a;
+    ASSERT_TRUE(geo::AccuracyProfile::fromName("psp", a));
+    EXPECT_EQ(a, geo::AccuracyProfile::psp());
+    EXPECT_STREQ(a.name(), "psp");
+    ASSERT_TRUE(geo::AccuracyProfile::fromName("ppsspp", a));
+    EXPECT_EQ(a, geo::AccuracyProfile::ppsspp());
+    EXPECT_STREQ(a.name(), "ppsspp");
+    EXPECT_FALSE(geo::AccuracyProfile::fromName("hardware", a));
+    a.zeroAreaTriangles = false;
+    EXPECT_STREQ(a.name(), "custom");
+    // Every switch differs between the two profiles (a switch exists only where they disagree).
+    const geo::AccuracyProfile p = geo::AccuracyProfile::psp(), q = geo::AccuracyProfile::ppsspp();
+    EXPECT_NE(p.implicitAlphaNonZeroTest, q.implicitAlphaNonZeroTest);
+    EXPECT_NE(p.clutSkipsAlphaTest, q.clutSkipsAlphaTest);
+    EXPECT_NE(p.splineOpenKnotQuirk, q.splineOpenKnotQuirk);
+    EXPECT_NE(p.zeroAreaTriangles, q.zeroAreaTriangles);
+    EXPECT_NE(p.pspSpritePosition, q.pspSpritePosition);
+    EXPECT_NE(p.spriteFarEdgeExcluded, q.spriteFarEdgeExcluded);
+    EXPECT_NE(p.pspBilinearTruncation, q.pspBilinearTruncation);
+}
+
+// pspBilinearTruncation: a 1x1 through-mode sprite over a 2-texel texture (red, green), bilinear,
+// clamped, from u = 143.7/256 texel, v = 1/2. Pixel 0 samples half a pixel (= half a texel) in:
+// the position with 8 fraction bits is 271.7, truncated 271 on a PSP (half a texel back: 143,
+// fraction 8/16: red and green 127), rounded 272 by PPSSPP (144, fraction 9/16: red 111, green
+// 143).
+void bilinearPositionScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0xFF000000, 0);
+    const u32 texels[8] = {0xFF0000FFu, 0xFF00FF00u, 0, 0, 0xFF0000FFu, 0xFF00FF00u, 0, 0};
+    b.texMode(GE_TFMT_8888, 0, false);
+    b.setTexture(0, b.place(texels, sizeof texels), 2, 2, 4);
+    b.texFunc(3, true);  // REPLACE
+    b.texFilter(1, 1);
+    b.texWrap(true, true);
+    b.enable(GE_CMD_TME, true);
+    constexpr u32 vtype = vt::TC_F | vt::COL_8888 | vt::POS_F | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].u = 143.7f / 256.0f, v[0].v = 0.5f;
+    v[1].x = 1, v[1].y = 1, v[1].u = v[0].u + 1, v[1].v = 1.5f;
+    v[0].color = v[1].color = 0xFFFFFFFFu;
+    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, packVertices(vtype, v, 2).data());
+}
+
+TEST(AccuracyProfiles, BilinearPositionTruncation) {
+    checkBothProfiles(
+        bilinearPositionScene, [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x007F7Fu); },
+        [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x008F6Fu); });
+}
+
+// implicitAlphaNonZeroTest: an alpha-0 source-alpha blend (A = As, B = 1 − As) without depth
+// write, stencil or alpha test over a dithered 5650 buffer. The blend leaves the destination,
+// and the SDK dither matrix adds 3 at (2, 1): the GE stores (25, 54, 24); PPSSPP drops the
+// fragment and the pixel keeps (24, 53, 23) (the values of tests/soft_blend.cpp
+// ZeroAlphaSourceAlphaBlendSkipsDither, Monster Hunter 3rd's HUD).
+void zeroAlphaDitherScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_565, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0xFF000000u | 189u << 16 | 215u << 8 | 198u, 0);  // exact in 5650: (24, 53, 23)
+    const int sdk[16] = {-4, 0, -3, 1, 2, -2, 3, -1, -3, 1, -4, 0, 3, -1, 2, -2};
+    b.setDither(sdk);
+    b.enable(GE_CMD_DTE, true);
+    b.enable(GE_CMD_ABE, true);
+    b.cmd(GE_CMD_BLEND, 2 | 3 << 4);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].color = v[1].color = 0x00FFFFFFu;
+    v[1].x = 4, v[1].y = 4;
+    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, packVertices(vtype, v, 2).data());
+}
+
+TEST(AccuracyProfiles, ImplicitAlphaNonZeroTest) {
+    auto px = [](const std::vector<u8>& vram) { return u32(readLE16(&vram[(1 * 64 + 2) * 2])); };
+    const u32 before = 24u | 53u << 5 | 23u << 11, dithered = 25u | 54u << 5 | 24u << 11;
+    checkBothProfiles(
+        zeroAlphaDitherScene, [&](const std::vector<u8>& vram) { EXPECT_EQ(px(vram), dithered); },
+        [&](const std::vector<u8>& vram) { EXPECT_EQ(px(vram), before); });
+}
+
+// clutSkipsAlphaTest: tests/reference_quirk_scenes.h skippedAlphaTestScene with palette entry 0
+// = 0x00000001 (alpha 0, entries AND to non-zero) and vertex alpha 255: the GE's alpha test
+// GREATER 0 rejects entry-0 texels (pixel (0, 0) keeps the black clear colour); PPSSPP skips
+// the test and writes RGB 0x000001. Entry 1 (opaque red) is drawn by both.
+TEST(AccuracyProfiles, ClutSkipsAlphaTest) {
+    auto scene = [](ListBuilder& b) { testscene::skippedAlphaTestScene(b, 0x00000001u, 255); };
+    checkBothProfiles(
+        scene,
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 0, 0, 512), 0u);
+            EXPECT_EQ(rgbAt(vram, 1, 0, 512), 0x0000FFu);
+        },
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 0, 0, 512), 0x000001u);
+            EXPECT_EQ(rgbAt(vram, 1, 0, 512), 0x0000FFu);
+        });
+}
+
+// splineOpenKnotQuirk: one 4x4 spline patch open at both ends has the manual's knot vector
+// 0,0,0,0,1,1,1,1 (§5.2.1): it is the Bezier patch of the same control points, so the GE draws
+// both alike. PPSSPP's knot setup gives other weights, so its spline differs from its Bezier.
+// Control points: columns at clip x −1, −1, −0.5, −0.5 (red 0, 0, 255, 255), rows at y 1, 1,
+// 0.5, 0.5; Gouraud, 4x4 divisions.
+void patchScene(ListBuilder& b, bool spline) {
+    testscene::screenFrame(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    b.setMatrix(GeMatrix::World, id);
+    b.setMatrix(GeMatrix::View, id);
+    b.setMatrix(GeMatrix::Proj, id);
+    b.enable(GE_CMD_BCE, false);
+    b.patchDivide(4, 4);
+    b.patchPrim(0);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+    const float xs[4] = {-1.0f, -1.0f, -0.5f, -0.5f}, ys[4] = {1.0f, 1.0f, 0.5f, 0.5f};
+    BuildVertex v[16];
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            BuildVertex& c = v[j * 4 + i];
+            c.x = xs[i], c.y = ys[j], c.z = 0;
+            c.color = 0xFF00FF00u | (i >= 2 ? 0xFFu : 0u) | (j >= 2 ? 0xFF0000u : 0u);
+        }
+    const std::vector<u8> data = packVertices(vtype, v, 16);
+    const u32 addr = b.place(data.data(), u32(data.size()), 4);
+    if (spline) b.drawSpline(vtype, 4, 4, 3, 3, 0, addr);
+    else b.drawBezier(vtype, 4, 4, 0, addr);
+}
+
+TEST(AccuracyProfiles, SplineOpenKnotQuirk) {
+    for (Where w : {Where::Soft, Where::GlExact, Where::GlHw}) {
+        SCOPED_TRACE(w == Where::Soft ? "soft" : w == Where::GlExact ? "GL exact" : "GL hw");
+        for (bool isPsp : {true, false}) {
+            SCOPED_TRACE(isPsp ? "psp" : "ppsspp");
+            const geo::AccuracyProfile acc = isPsp ? geo::AccuracyProfile::psp() : geo::AccuracyProfile::ppsspp();
+            std::vector<u8> spl, bez;
+            std::string err;
+            if (!render(w, acc, [](ListBuilder& b) { patchScene(b, true); }, spl, err) ||
+                !render(w, acc, [](ListBuilder& b) { patchScene(b, false); }, bez, err)) {
+                ASSERT_NE(w, Where::Soft) << err;
+                GTEST_SKIP() << "no GL context: " << err;
+            }
+            // The patch was drawn (its corner pixel is green, not the clear colour).
+            EXPECT_NE(rgbAt(bez, 1, 1, 512), 0u);
+            if (isPsp) EXPECT_TRUE(spl == bez) << "the open-open spline is the Bezier patch";
+            else EXPECT_FALSE(spl == bez) << "PPSSPP's knot quirk moves the spline's vertices";
+        }
+    }
+}
+
+// zeroAreaTriangles: collinear triangles along a diagonal and a strip with a repeated vertex
+// (tests/gl_vs_soft.cpp ZeroAreaTrianglesAreIdentical's scene) over black. PPSSPP draws the
+// samples exactly on their line; the GE draws nothing.
+void zeroAreaScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0x00000000, 0);
+    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[6];
+    const float xy[6][2] = {{4, 4}, {20, 20}, {20, 20}, {40, 40}, {24, 24}, {24, 24}};
+    for (int i = 0; i < 6; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1], v[i].color = i < 3 ? 0xFFFFFFFFu : 0xFFFF0000u;
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, packVertices(vtype, v, 6).data());
+    const float strip[5][2] = {{44, 2}, {44, 12}, {54, 2}, {54, 12}, {54, 12}};
+    for (int i = 0; i < 5; ++i) v[i].x = strip[i][0], v[i].y = strip[i][1], v[i].color = 0xFF00C000u;
+    b.drawArrayData(GE_PRIM_TRIANGLE_STRIP, vtype, 5, nullptr, packVertices(vtype, v, 5).data());
+}
+
+TEST(AccuracyProfiles, ZeroAreaTriangles) {
+    auto diagonal = [](const std::vector<u8>& vram) {
+        size_t drawn = 0;
+        for (int i = 0; i < 48; ++i) drawn += rgbAt(vram, i, i, 64) != 0 ? 1 : 0;
+        return drawn;
+    };
+    checkBothProfiles(
+        zeroAreaScene,
+        [&](const std::vector<u8>& vram) {
+            EXPECT_EQ(diagonal(vram), 0u);
+            EXPECT_EQ(rgbAt(vram, 49, 7, 64), 0x00C000u);  // the strip's quad itself
+        },
+        [&](const std::vector<u8>& vram) {
+            EXPECT_GT(diagonal(vram), 0u);
+            EXPECT_EQ(rgbAt(vram, 49, 7, 64), 0x00C000u);
+        });
+}
+
+// pspSpritePosition and spriteFarEdgeExcluded: tests/sprite_position_scene.h, whose six cases
+// are values a PSP printed (checkSpritePositionScene). With the ppsspp profile each case shows
+// PPSSPP's value instead, as the scene's comments give them: the far corner 1809.999998 reads
+// texel 1 already at u0 = 131/512; the offset 3/16 reads 3/16 green; the top edge on row 0's
+// top reads row 1; Z 4659 fails GEQUAL 0x1234 (not drawn); the through-mode pixel on the far
+// edge is drawn (the odd pixel of its pair).
+TEST(AccuracyProfiles, SpritePositionAndFarEdge) {
+    checkBothProfiles(
+        testscene::spritePositionScene,
+        [](const std::vector<u8>& vram) {
+            testscene::checkSpritePositionScene([&](int x, int y) { return rgbAt(vram, x, y, 512); });
+        },
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 0, 0, 512), 0x00FF00u);
+            EXPECT_EQ(rgbAt(vram, 8, 0, 512), 0x00FF00u);
+            EXPECT_EQ(rgbAt(vram, 16, 0, 512), 0x002FCFu);
+            EXPECT_EQ(rgbAt(vram, 24, 0, 512), 0xFF0000u);
+            EXPECT_EQ(rgbAt(vram, 32, 0, 512), 0u);
+            EXPECT_EQ(rgbAt(vram, 40, 1, 512), 0x0000FFu);
+            EXPECT_NE(rgbAt(vram, 41, 1, 512), 0u);
+            EXPECT_EQ(rgbAt(vram, 4, 0, 512), 0u);
+        });
+}
+
+}  // namespace
+}  // namespace ge::gltest
