@@ -56,12 +56,19 @@ struct AccuracyProfile {
     // "What fails"). PPSSPP's x86 sampler JIT rounds it to nearest, ties to even (SamplerX86.cpp
     // Jit_GetTexelCoordsQuad, CVTPS2DQ; softmodel/sampler.cpp texelFixedRound).
     bool pspBilinearTruncation = false;
+    // Triangles sample pixel (x, y) at its centre (16·x + 8, 16·y + 8 in 1/16 pixel), so a centre
+    // exactly on an edge goes by the top-left rule alone (pspautotests primitives/continue and
+    // immediate, texmtx/uvs; docs/conformance.md "primitives"). PPSSPP's software renderer
+    // samples 1/16 pixel up-left of it (Rasterizer.cpp TriangleEdge::Start, centerOff =
+    // SCREEN_SCALE_FACTOR / 2 - 1; geometry/raster.h triangleSampleOffset).
+    bool pspTriangleSampleCentre = false;
 
     static constexpr AccuracyProfile psp() {
         AccuracyProfile a;
         a.pspSpritePosition = true;
         a.spriteFarEdgeExcluded = true;
         a.pspBilinearTruncation = true;
+        a.pspTriangleSampleCentre = true;
         return a;
     }
     static constexpr AccuracyProfile ppsspp() {

@@ -27,6 +27,7 @@ RasterParams rasterParamsFor(const GeState& st, bool through, bool rectangles, c
     rp.through = through;
     rp.sprite = rectangles && acc.spriteFarEdgeExcluded;
     rp.zeroAreaTriangles = acc.zeroAreaTriangles;
+    rp.sampleCentre = acc.pspTriangleSampleCentre;
     rp.texW0 = float(texCoordWidth(st, 0));  // unclamped 2^n (texture_size.h)
     rp.texH0 = float(texCoordHeight(st, 0));
     return rp;

@@ -29,16 +29,9 @@ inline double recipW(float w) {
     return 1.0 / d;
 }
 
-// Where a triangle samples pixel (x, y): subpixel (16x + 7, 16y + 7), half a pixel less 1/16. This
-// is PPSSPP's software renderer (TriangleEdge::Start, "centerOff = SCREEN_SCALE_FACTOR / 2 − 1"),
-// which made the reference renders: coverage, colours, depth, fog and texture coordinates all come
-// from the edge functions there. Sampling at 16x + 8 instead shifts every texture coordinate by a
-// sixteenth of a pixel, which the references show clearly (docs/accuracy.md).
-constexpr int kTriSample = 7;
-
-inline int sampleRowsOfTriangle(int minY, int maxY, int& y1, int& y2) {
-    y1 = int(ceilDiv(minY - kTriSample, 16));
-    y2 = int(floorDiv(maxY - kTriSample, 16));
+inline int sampleRowsOfTriangle(int sample, int minY, int maxY, int& y1, int& y2) {
+    y1 = int(ceilDiv(minY - sample, 16));
+    y2 = int(floorDiv(maxY - sample, 16));
     return y1 <= y2;
 }
 
@@ -95,8 +88,6 @@ double perspectiveRecip(float w) { return recipW(w); }
 
 float lodFromTexSteps(const RasterParams& rp, double ds, double dt) { return lodFromSteps(rp, ds, dt); }
 
-int triangleSampleOffset() { return kTriSample; }
-
 bool Band::overlaps(int y1, int y2) const {
     if (y1 > y2) return false;
     if (count <= 1) return true;
@@ -145,7 +136,7 @@ bool primitiveRows(const RasterParams& rp, PrimKind kind, const ScreenVertex* co
             y1 = int(floorDiv(lo, 16));
             y2 = int(floorDiv(hi, 16));
         } else {
-            sampleRowsOfTriangle(lo, hi, y1, y2);
+            sampleRowsOfTriangle(triangleSampleOffset(rp), lo, hi, y1, y2);
         }
         break;
     }
@@ -203,6 +194,7 @@ void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, con
     // whose float-bits log2 (texLog2) is about 128.5 levels: the smallest mipmap level.
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float lod = rp.textured && rp.needLod ? lodFromStepsF(rp, nan, nan) : 0.0f;
+    const int sample = triangleSampleOffset(rp);
     const ScreenVertex* orders[2][3] = {{&in0, &in1, &in2}, {&in2, &in1, &in0}};
     for (const auto& p : orders) {
         s64 A[3], B[3], C[3], bias[3];
@@ -222,12 +214,12 @@ void rasterZeroAreaTriangle(const RasterParams& rp, const ScreenVertex& in0, con
         const int k = A[0] != 0 ? 0 : (A[1] != 0 ? 1 : 2);
         for (int y = py1; y <= py2; ++y) {
             if (!band.owns(y)) continue;
-            const s64 sy = 16 * s64(y) + kTriSample;
+            const s64 sy = 16 * s64(y) + sample;
             const s64 num = -(B[k] * sy + C[k]);
             if (num % A[k] != 0) continue;
             const s64 sx = num / A[k];
-            const s64 xs = floorDiv(sx - kTriSample, 16);
-            if (xs * 16 != sx - kTriSample || xs < px1 || xs > px2) continue;  // not a sample point
+            const s64 xs = floorDiv(sx - sample, 16);
+            if (xs * 16 != sx - sample || xs < px1 || xs > px2) continue;  // not a sample point
             Fragment& f = sink.next();
             f.x = int(xs);
             f.y = y;
@@ -293,7 +285,8 @@ struct TriangleWalk {
     }
 
     s64 edgeAt(int i, s64 px, s64 py) const {
-        return A[i] * (16 * px + kTriSample) + B[i] * (16 * py + kTriSample) + C[i];
+        const int sample = triangleSampleOffset(rp);
+        return A[i] * (16 * px + sample) + B[i] * (16 * py + sample) + C[i];
     }
     // The edge-function weights of o[] from those of v[].
     void orderWeights(s64 e0, s64 e1, s64 e2, float& w0, float& w1, float& w2) const {
@@ -386,10 +379,11 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
     // Pixel box whose centres lie within the vertices' extent, clipped.
     const int minX = std::min({in0.x, in1.x, in2.x}), maxX = std::max({in0.x, in1.x, in2.x});
     const int minY = std::min({in0.y, in1.y, in2.y}), maxY = std::max({in0.y, in1.y, in2.y});
-    const int px1 = std::max<int>(int(ceilDiv(minX - kTriSample, 16)), rp.clipX1);
-    const int px2 = std::min<int>(int(floorDiv(maxX - kTriSample, 16)), rp.clipX2);
+    const int sample = triangleSampleOffset(rp);
+    const int px1 = std::max<int>(int(ceilDiv(minX - sample, 16)), rp.clipX1);
+    const int px2 = std::min<int>(int(floorDiv(maxX - sample, 16)), rp.clipX2);
     int py1, py2;
-    sampleRowsOfTriangle(minY, maxY, py1, py2);
+    sampleRowsOfTriangle(sample, minY, maxY, py1, py2);
     clipRows(rp, py1, py2);
     if (px1 > px2 || !band.overlaps(py1, py2)) return;
 
@@ -406,12 +400,12 @@ void rasterTriangle(const RasterParams& rp, const ScreenVertex& in0, const Scree
             y |= (1 << Band::kShift) - 1;
             continue;
         }
-        const s64 cy = 16 * s64(y) + kTriSample;
+        const s64 cy = 16 * s64(y) + sample;
         s64 K[3], step[3];
         s64 xl = px1, xr = px2;
         bool empty = false;
         for (int i = 0; i < 3; ++i) {
-            K[i] = tw.A[i] * kTriSample + tw.B[i] * cy + tw.C[i];
+            K[i] = tw.A[i] * sample + tw.B[i] * cy + tw.C[i];
             step[i] = 16 * tw.A[i];
             // Solve step·x + K ≥ thr for x.
             if (step[i] > 0) xl = std::max(xl, ceilDiv(tw.thr[i] - K[i], step[i]));

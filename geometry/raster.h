@@ -74,6 +74,9 @@ struct RasterParams {
     // Zero-area triangles draw the samples exactly on their line, as PPSSPP does
     // (AccuracyProfile::zeroAreaTriangles; rasterTriangle); else they draw nothing.
     bool zeroAreaTriangles = true;
+    // Triangles sample at the pixel centre (AccuracyProfile::pspTriangleSampleCentre;
+    // triangleSampleOffset).
+    bool sampleCentre = false;
     float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 
@@ -174,6 +177,11 @@ double perspectiveRecip(float w);
 // rasterTriangle / rasterRectangle form Fragment::lod.
 float lodFromTexSteps(const RasterParams& rp, double ds, double dt);
 // Where rasterTriangle samples pixel (x, y): (16·x + o, 16·y + o) in 1/16 pixel, o returned here.
-int triangleSampleOffset();
+// PPSSPP's software renderer samples at o = 7, half a pixel less 1/16 (TriangleEdge::Start,
+// "centerOff = SCREEN_SCALE_FACTOR / 2 - 1"): coverage, colours, depth, fog and texture
+// coordinates all come from the edge functions there, and sampling elsewhere shifts every texture
+// coordinate by a sixteenth of a pixel (docs/accuracy.md). The PSP samples at the centre, o = 8
+// (AccuracyProfile::pspTriangleSampleCentre).
+inline int triangleSampleOffset(const RasterParams& rp) { return rp.sampleCentre ? 8 : 7; }
 
 }  // namespace ge::geo

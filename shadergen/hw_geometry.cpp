@@ -320,7 +320,9 @@ bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::str
     s += "#define GE_OFFY " + ui(HW_WORD(offset16) + 1) + "\n";
     s += "#define GE_CULL_ON " + ui(HW_WORD(cull)) + "\n";
     s += "#define GE_CULL_CCW " + ui(HW_WORD(cull) + 1) + "\n";
-    s += "#define GE_SHIFT " + flit(float(8 - geo::triangleSampleOffset()) / 16.0f) + "\n";
+    geo::RasterParams sampling;
+    sampling.sampleCentre = k.sampleCentre != 0;
+    s += "#define GE_SHIFT " + flit(float(8 - geo::triangleSampleOffset(sampling)) / 16.0f) + "\n";
     s += "layout(triangles) in;\n"
          "layout(triangle_strip, max_vertices = 6) out;\n"  // a clipped quadrilateral: 2 pieces
          "uniform uvec4 u_hw[" + std::to_string(kHwVsUniformVec4) + "];\n"

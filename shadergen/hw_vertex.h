@@ -130,6 +130,8 @@ struct HwVsKey {
     u8 primKind = 0;     // the PRIM type drawn (the geometry shader's ring order): 0 triangles
                          // (GL_TRIANGLES), 1 triangle strip (GL_TRIANGLE_STRIP), 2 triangle fan
                          // (GL_TRIANGLE_FAN); canonicalised to 0 when above 2
+    u8 sampleCentre = 0;  // triangles sample at the pixel centre (geo::RasterParams::sampleCentre,
+                          // the geometry shader's GE_SHIFT)
     // ---- through mode (VTYPE bit 23, ge-rules.md §5.5, §8.1) ----
     u8 through = 0;      // 1: positions and UV as given (no normalisation, no morphing, no
                          // skinning), no transform, lighting, texture mapping, fog, discard rules
@@ -138,7 +140,7 @@ struct HwVsKey {
                          // LMODE flags, texMap, projSource, fog, normalReverse and clipEnable
                          // (the CPU ignores them), and keeps every layout field (tc, col, nrm, pos,
                          // weights, weightCount, morphCount: they set the offsets and the stride)
-    u8 reserved[3] = {};
+    u8 reserved[2] = {};
 };
 static_assert(sizeof(HwVsKey) == 32, "HwVsKey: every byte must be a named field");
 

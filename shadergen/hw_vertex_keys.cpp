@@ -36,6 +36,7 @@ void canonicalize(HwVsKey& k) {
     std::memset(k.reserved, 0, sizeof k.reserved);
     // The primitive kind only changes the geometry shader (its ring order, hw_geometry.cpp).
     if (k.primKind > 2) k.primKind = 0;
+    k.sampleCentre = k.sampleCentre ? 1 : 0;
     if (k.pos == 0) {
         // No position: every vertex is dropped (ge-rules.md §8.11); only the layout remains meaningful (and
         // which outputs the vertex shader has).
@@ -153,6 +154,7 @@ std::string describe(const HwVsKey& k) {
     static const char* const kPrim[3] = {"list", "strip", "fan"};
     s += " gs=";
     s += kPrim[k.primKind > 2 ? 0 : k.primKind];
+    if (k.sampleCentre) s += " centre";
     return s;
 }
 

@@ -111,7 +111,8 @@ TEST(GeoRaster, JitteredMeshNoGapsNoOverlap) {
 }
 
 TEST(GeoRaster, TopLeftRuleOnPixelCentres) {
-    // Triangles sample pixel p at p + 7/16 (raster.cpp kTriSample, the reference renderer's point).
+    // Triangles sample pixel p at p + 7/16 (raster.h triangleSampleOffset with
+    // RasterParams::sampleCentre off: the reference renderer's point).
     // Right triangle with edges through sample points: top edge y = 7/16 and left edge x = 7/16
     // are drawn; the hypotenuse (a right edge) is not: pixels with x + y ≤ 3.
     {

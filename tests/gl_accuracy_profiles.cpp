@@ -75,6 +75,7 @@ TEST(AccuracyProfiles, NamesRoundTrip) {
     EXPECT_NE(p.pspSpritePosition, q.pspSpritePosition);
     EXPECT_NE(p.spriteFarEdgeExcluded, q.spriteFarEdgeExcluded);
     EXPECT_NE(p.pspBilinearTruncation, q.pspBilinearTruncation);
+    EXPECT_NE(p.pspTriangleSampleCentre, q.pspTriangleSampleCentre);
 }
 
 // pspBilinearTruncation: a 1x1 through-mode sprite over a 2-texel texture (red, green), bilinear,
@@ -106,6 +107,38 @@ TEST(AccuracyProfiles, BilinearPositionTruncation) {
     checkBothProfiles(
         bilinearPositionScene, [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x007F7Fu); },
         [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 0, 0, 64), 0x008F6Fu); });
+}
+
+// pspTriangleSampleCentre: a through-mode triangle (20, 0), (20, 20), (0, 20) whose left edge is
+// the up-right diagonal x + y = 20 (pspautotests primitives/continue's second triangle). Pixel
+// (10, 9) has its centre exactly on it: the PSP samples the centre and draws it (a left edge is
+// inside, top-left rule); PPSSPP samples 1/16 pixel up-left of it, outside. (10, 10) is inside
+// for both, (10, 8) for neither.
+void sampleCentreScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0x00000000, 0);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[3];
+    const float xy[3][2] = {{20, 0}, {20, 20}, {0, 20}};
+    for (int i = 0; i < 3; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1], v[i].color = 0xFF00C000u;
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 3, nullptr, packVertices(vtype, v, 3).data());
+}
+
+TEST(AccuracyProfiles, TriangleSampleCentre) {
+    checkBothProfiles(
+        sampleCentreScene,
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 10, 9, 64), 0x00C000u);
+            EXPECT_EQ(rgbAt(vram, 10, 10, 64), 0x00C000u);
+            EXPECT_EQ(rgbAt(vram, 10, 8, 64), 0u);
+        },
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 10, 9, 64), 0u);
+            EXPECT_EQ(rgbAt(vram, 10, 10, 64), 0x00C000u);
+            EXPECT_EQ(rgbAt(vram, 10, 8, 64), 0u);
+        });
 }
 
 // implicitAlphaNonZeroTest: an alpha-0 source-alpha blend (A = As, B = 1 − As) without depth

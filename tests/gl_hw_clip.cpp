@@ -687,7 +687,7 @@ std::vector<u32> cpuRender(const Scene& sc) {
     };
     geo::FragmentSink sink(buf.data(), buf.size(), flush, &px);
     // GlVertex back to the rasteriser's ScreenVertex (x16 from the shifted drawing position).
-    const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
+    const float shift = float(8 - geo::triangleSampleOffset(rp)) / 16.0f;
     auto sv = [&](const gl::GlVertex& v) {
         geo::ScreenVertex s;
         s.x = int(std::lround((v.x - shift) * 16.0f));

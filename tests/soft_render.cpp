@@ -43,12 +43,13 @@ struct Scene {
         b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
     }
     // Runs the list on a fresh renderer with `threads` and returns the whole of VRAM.
-    std::vector<u8> run(int threads) {
+    std::vector<u8> run(int threads, const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp()) {
         ListBuilder copy = b;
         copy.finish();
         const u32 list = copy.placeList();
         SoftOptions o;
         o.threads = threads;
+        o.accuracy = acc;
         auto r = createSoftRenderer(mem, o);
         mem.fill(Memory::kVramBase, 0, Memory::kVramSize);
         GeEngine eng(mem, r.get());
@@ -352,7 +353,8 @@ void redGreenTexture(Scene& s) {
 TEST(SoftRender, StripQuadDrawnAsRectangle) {
     // The reference renderer (PPSSPP's) draws a 4-vertex strip that forms an axis-aligned
     // rectangle with matching UVs and one colour as a RECTANGLES primitive, sampled at pixel
-    // centres; triangles sample 1/16 pixel earlier (geometry/raster.cpp kTriSample). Bilinear 1:1
+    // centres; its triangles sample 1/16 pixel earlier (the ppsspp profile, geometry/raster.h
+    // triangleSampleOffset; the psp profile samples triangles at the centre too). Bilinear 1:1
     // mapping of a texture whose left half is red and right half green shows which path ran: at
     // the column where green starts a rectangle gives pure green, triangles blend 1/16 of red in.
     auto build = [](Scene& s, u32 cornerColor) {
@@ -372,7 +374,8 @@ TEST(SoftRender, StripQuadDrawnAsRectangle) {
     Scene rect, tris;
     build(rect, 0xFFFFFFFF);
     build(tris, 0xFEFFFFFF);  // a different vertex colour: no longer one rectangle
-    auto a = rect.run(1), b = tris.run(1);
+    const geo::AccuracyProfile ppsspp = geo::AccuracyProfile::ppsspp();
+    auto a = rect.run(1, ppsspp), b = tris.run(1, ppsspp);
     EXPECT_EQ(Scene::pixel(a, kFb, 131, 130), 0x0000FFu);
     EXPECT_EQ(Scene::pixel(a, kFb, 132, 130), 0x00FF00u);
     const u32 blended = Scene::pixel(b, kFb, 132, 130);
@@ -386,7 +389,8 @@ TEST(SoftRender, ProjectionStripWithQOneDrawnAsRectangle) {
     // renderer (PPSSPP's, Rasterizer.cpp ComputeRasterizerState) then treats the texture as not
     // projected, so a transform-mode strip quad stays a rectangle sampled at pixel centres (NFS
     // Carbon's HUD). With Q = 2 (S and T doubled to match) it becomes two triangles sampled 1/16
-    // pixel earlier. Bilinear 1:1 mapping of a red|green texture tells the two apart.
+    // pixel earlier (the ppsspp profile's sample point). Bilinear 1:1 mapping of a red|green
+    // texture tells the two apart.
     auto build = [](Scene& s, float q) {
         redGreenTexture(s);
         const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -414,7 +418,8 @@ TEST(SoftRender, ProjectionStripWithQOneDrawnAsRectangle) {
     Scene rect, tris;
     build(rect, 1);
     build(tris, 2);
-    auto a = rect.run(1), b = tris.run(1);
+    const geo::AccuracyProfile ppsspp = geo::AccuracyProfile::ppsspp();
+    auto a = rect.run(1, ppsspp), b = tris.run(1, ppsspp);
     EXPECT_EQ(Scene::pixel(a, kFb, 100, 100), 0x0000FFu);  // the quad starts at (100, 100)
     EXPECT_EQ(Scene::pixel(a, kFb, 131, 130), 0x0000FFu);
     EXPECT_EQ(Scene::pixel(a, kFb, 132, 130), 0x00FF00u);
@@ -426,7 +431,8 @@ TEST(SoftRender, ProjectionStripWithQOneDrawnAsRectangle) {
 
 TEST(SoftRender, FanQuadDrawnAsRectangle) {
     // Same idea for a fresh 4-vertex fan TL, TR, BR, BL (the reference's DetectRectangleFromFan):
-    // drawn as a rectangle it samples pixel centres, so the first green column is pure green.
+    // drawn as a rectangle it samples pixel centres, so the first green column is pure green
+    // (triangles under the ppsspp profile sample 1/16 pixel earlier).
     auto build = [](Scene& s, u32 cornerColor) {
         redGreenTexture(s);
         constexpr u32 vtype = vt::TC_16 | vt::COL_8888 | vt::POS_16 | vt::THROUGH;
@@ -443,7 +449,8 @@ TEST(SoftRender, FanQuadDrawnAsRectangle) {
     Scene rect, tris;
     build(rect, 0xFFFFFFFF);
     build(tris, 0xFEFFFFFF);  // a different vertex colour: drawn as two triangles
-    auto a = rect.run(1), b = tris.run(1);
+    const geo::AccuracyProfile ppsspp = geo::AccuracyProfile::ppsspp();
+    auto a = rect.run(1, ppsspp), b = tris.run(1, ppsspp);
     EXPECT_EQ(Scene::pixel(a, kFb, 131, 130), 0x0000FFu);
     EXPECT_EQ(Scene::pixel(a, kFb, 132, 130), 0x00FF00u);
     EXPECT_NE(Scene::pixel(b, kFb, 132, 130), 0x00FF00u);

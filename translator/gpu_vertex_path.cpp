@@ -91,6 +91,7 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
     // The geometry shader does what needs the whole primitive: the discard rules, near clipping
     // in the reference's vertex order (which needs the primitive kind), culling.
     out.key.primKind = mode == GL_TRIANGLE_STRIP ? 1 : (mode == GL_TRIANGLE_FAN ? 2 : 0);
+    out.key.sampleCentre = acc_.pspTriangleSampleCentre ? 1 : 0;
     const u32 stride = shadergen::hwVsStride(out.key);
     if (stride == 0) return reject(CpuReason::Memory);
     out.mode = mode;

@@ -55,7 +55,7 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
     if (rp.through) flags |= T::kFlagThrough;
     putF32(r, T::kHeader, 2, 0.0f);
     putF32(r, T::kHeader, 3, 1.0f);
-    putU32(r, T::kColors, 3, u32(geo::triangleSampleOffset()));
+    putU32(r, T::kColors, 3, u32(geo::triangleSampleOffset(rp)));
     // rasterTriangle works on the clockwise (on screen) order v = in0, in2, in1 when the signed
     // area is negative; its edge functions follow v. Attributes are summed in the order o.
     const geo::ScreenVertex* v[3] = {&in0, &in1, &in2};

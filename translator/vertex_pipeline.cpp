@@ -110,7 +110,7 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
     // The software rasteriser samples triangles at 16·x + o (raster.h triangleSampleOffset), GL
     // at the pixel centre 16·x + 8: moving the triangle by (8 − o)/16 pixel (exact in float on
     // the 1/16 grid) makes GL cover the same pixels.
-    const float shift = float(8 - geo::triangleSampleOffset()) / 16.0f;
+    const float shift = float(8 - geo::triangleSampleOffset(rp)) / 16.0f;
     for (GlVertex& v : g) v.x += shift, v.y += shift;
     if (!rp.gouraud) {
         // Flat shading: the provoking (last) vertex's colours (ge-rules.md §8.1).
