@@ -3,8 +3,8 @@
 // coordinates → Fragments (manual §3.6, §4, §8; docs/ge-rules.md §8.1, §8.2, §8.6, §8.11, §6.6).
 //
 // Positions are fixed point with 4 fraction bits (1/16 pixel, ge-rules.md §8.1); pixel centres are at +0.5
-// (manual §3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7, as the reference renderer
-// (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
+// (manual §3.6), i.e. at 16·x + 8 — except that triangles sample at 16·x + 7 unless
+// RasterParams::sampleCentre, as the reference renderer (PPSSPP's software GE) does. Coverage is decided with exact 64-bit integer edge functions:
 //   - triangles: top-left fill rule — pixels whose sample point is exactly on a right edge or on a
 //     bottom edge parallel to X are not drawn (manual Figure 4-9, ge-rules.md §8.1); zero-area triangles draw
 //     the samples exactly on their line when the fill rule allows it, as the reference renderer
