@@ -28,6 +28,7 @@ RasterParams rasterParamsFor(const GeState& st, bool through, bool rectangles, c
     rp.sprite = rectangles && acc.spriteFarEdgeExcluded;
     rp.zeroAreaTriangles = acc.zeroAreaTriangles;
     rp.sampleCentre = acc.pspTriangleSampleCentre;
+    rp.colourGradients = acc.pspColourGradients;
     rp.texW0 = float(texCoordWidth(st, 0));  // unclamped 2^n (texture_size.h)
     rp.texH0 = float(texCoordHeight(st, 0));
     return rp;

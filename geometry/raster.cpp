@@ -52,6 +52,15 @@ inline u8 interpolateColor(int a, int b, int c, float w0, float w1, float w2, fl
     return u8(r <= 0.0f ? 0 : (r >= 255.0f ? 255 : int(r)));
 }
 
+// A channel's value from its gradient plane (raster.h colourGradientReference): the products are
+// taken modulo 2^64, which is exact because the sum itself is small (the value within 0–255
+// inside the triangle, off by the gradients' rounding over the distance from the reference).
+inline u8 colourFromGradients(int cref, s64 gx, s64 gy, s64 dx, s64 dy) {
+    const s64 v = s64(u64(s64(cref) * 4096) + u64(gx) * u64(dx) + u64(gy) * u64(dy));
+    const s64 q = v >> 12;  // rounded toward −∞ (arithmetic shift)
+    return u8(q < 0 ? 0 : (q > 255 ? 255 : q));
+}
+
 void clipRows(const RasterParams& rp, int& y1, int& y2) {
     y1 = std::max(y1, rp.clipY1);
     y2 = std::min(y2, rp.clipY2);
@@ -254,6 +263,12 @@ struct TriangleWalk {
     TriangleConstants same;
     float wsumRecip = 0;  // the edge functions sum to the (positive) area everywhere
     float os[3] = {}, ot[3] = {}, oq[3] = {}, orw[3] = {}, ocw[3] = {}, oz[3] = {};
+    // Colour gradient planes (RasterParams::colourGradients; raster.h colourGradientReference):
+    // channels 0–3 primary RGBA, 4–6 secondary RGB.
+    bool gradients = false;
+    s64 refX = 0, refY = 0;
+    int refC[7] = {};
+    s64 gx[7] = {}, gy[7] = {};
 
     TriangleWalk(const RasterParams& p, const ScreenVertex& in0, const ScreenVertex& in1, const ScreenVertex& in2,
                  const ScreenVertex& prov, s64 area)
@@ -277,10 +292,36 @@ struct TriangleWalk {
         // Constant attributes are detected once so the common cases cost nothing per pixel.
         same = triangleConstants(rp, in0, in1, in2, prov);
         wsumRecip = 1.0f / float(area);
+        if (rp.colourGradients && (!same.color || !same.secondary)) setupGradients(area);
         // Texture coordinates as the reference computes them (texAt below): q_i = 1/w_i.
         for (int i = 0; i < 3; ++i) {
             os[i] = o[i]->s, ot[i] = o[i]->t, oq[i] = o[i]->q, ocw[i] = o[i]->w, oz[i] = float(o[i]->z);
             orw[i] = rp.through ? 1.0f : 1.0f / o[i]->w;
+        }
+    }
+
+    // The gradient planes of channels 0–3 (primary RGBA) and 4–6 (secondary RGB).
+    void setupGradients(s64 area) {
+        gradients = true;
+        const int r = colourGradientReference(o);
+        refX = o[r]->x, refY = o[r]->y;
+        auto plane = [&](int ch, const int c[3]) {
+            s64 sumA = 0, sumB = 0;
+            for (int k = 0; k < 3; ++k) {
+                const int e = swapped ? (k + 1) % 3 : k;  // the edge weighting o[k] (orderWeights)
+                sumA += c[k] * A[e], sumB += c[k] * B[e];
+            }
+            refC[ch] = c[r];
+            gx[ch] = floorDiv(4096 * sumA, area);
+            gy[ch] = floorDiv(4096 * sumB, area);
+        };
+        for (int ch = 0; ch < 4; ++ch) {
+            const int c[3] = {o[0]->color[ch], o[1]->color[ch], o[2]->color[ch]};
+            plane(ch, c);
+        }
+        for (int ch = 0; ch < 3; ++ch) {
+            const int c[3] = {o[0]->secondary[ch], o[1]->secondary[ch], o[2]->secondary[ch]};
+            plane(4 + ch, c);
         }
     }
 
@@ -314,6 +355,23 @@ struct TriangleWalk {
         t = interpolateF(ot[0], ot[1], ot[2], a, b, c, qRecip);
     }
 
+    // Colours as the reference interpolates them: float sums rounded to nearest.
+    void shadeColoursF(Fragment& f, const ScreenVertex& cs, float fw0, float fw1, float fw2) const {
+        if (same.color) {
+            std::memcpy(f.color, cs.color, 4);
+        } else {
+            for (int c = 0; c < 4; ++c)
+                f.color[c] = interpolateColor(o[0]->color[c], o[1]->color[c], o[2]->color[c], fw0, fw1, fw2, wsumRecip);
+        }
+        if (same.secondary) {
+            std::memcpy(f.secondary, cs.secondary, 3);
+        } else {
+            for (int c = 0; c < 3; ++c)
+                f.secondary[c] =
+                    interpolateColor(o[0]->secondary[c], o[1]->secondary[c], o[2]->secondary[c], fw0, fw1, fw2, wsumRecip);
+        }
+    }
+
     // Depth, colours and fog of the fragment with attribute-order weights w.
     void shade(Fragment& f, float fw0, float fw1, float fw2) const {
         const ScreenVertex& cs = *same.source;  // colour source when constant
@@ -330,18 +388,16 @@ struct TriangleWalk {
             const float zr = roundHalfEven(zf);
             f.z = u16(!(zr > 0.0f) ? 0 : (zr >= 65535.0f ? 65535 : int(zr)));
         }
-        if (same.color) {
-            std::memcpy(f.color, cs.color, 4);
-        } else {
+        if (gradients) {
+            const int sample = triangleSampleOffset(rp);
+            const s64 dx = 16 * s64(f.x) + sample - refX, dy = 16 * s64(f.y) + sample - refY;
             for (int c = 0; c < 4; ++c)
-                f.color[c] = interpolateColor(o[0]->color[c], o[1]->color[c], o[2]->color[c], fw0, fw1, fw2, wsumRecip);
-        }
-        if (same.secondary) {
-            std::memcpy(f.secondary, cs.secondary, 3);
-        } else {
+                f.color[c] = same.color ? cs.color[c] : colourFromGradients(refC[c], gx[c], gy[c], dx, dy);
             for (int c = 0; c < 3; ++c)
-                f.secondary[c] =
-                    interpolateColor(o[0]->secondary[c], o[1]->secondary[c], o[2]->secondary[c], fw0, fw1, fw2, wsumRecip);
+                f.secondary[c] = same.secondary ? cs.secondary[c]
+                                                : colourFromGradients(refC[4 + c], gx[4 + c], gy[4 + c], dx, dy);
+        } else {
+            shadeColoursF(f, cs, fw0, fw1, fw2);
         }
         f.fog = same.fog ? u8(255) : fogToByte(interpolateF(o[0]->fog, o[1]->fog, o[2]->fog, fw0, fw1, fw2, wsumRecip));
     }

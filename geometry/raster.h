@@ -77,6 +77,10 @@ struct RasterParams {
     // Triangles sample at the pixel centre (AccuracyProfile::pspTriangleSampleCentre;
     // triangleSampleOffset).
     bool sampleCentre = false;
+    // Gouraud colours stepped from the top vertex by gradients of 8 fraction bits, rounded down
+    // (AccuracyProfile::pspColourGradients; colourGradientReference); else interpolated in float
+    // and rounded to nearest, as PPSSPP does.
+    bool colourGradients = false;
     float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 
@@ -161,6 +165,22 @@ struct TriangleConstants {
 };
 TriangleConstants triangleConstants(const RasterParams& rp, const ScreenVertex& in0, const ScreenVertex& in1,
                                     const ScreenVertex& in2, const ScreenVertex& prov);
+// Gouraud colour under RasterParams::colourGradients (AccuracyProfile::pspColourGradients).
+// Each channel (primary RGBA, secondary RGB) is stepped from a reference vertex, the top one:
+// with E_k = A_k·sx + B_k·sy + C_k the edge function weighting vertex k and area = ΣE_k, the
+// per-pixel gradients 16·Σc_k·A_k / area and 16·Σc_k·B_k / area are held to 8 fraction bits,
+// rounded toward −∞ (gx, gy = ⌊4096·Σc_k·A_k / area⌋, …), and the value at the sample point
+// (sx, sy) (1/16 pixel) is ⌊(4096·c_ref + gx·(sx − x_ref) + gy·(sy − y_ref)) / 4096⌋, kept to
+// 0–255. Equal vertex values give the value back exactly (zero gradients). The GL exact shader
+// evaluates the same integers from the record (translator/tri_setup.cpp). This returns the index
+// in `o` of the reference vertex: the least y, then the least x.
+inline int colourGradientReference(const ScreenVertex* const o[3]) {
+    int r = 0;
+    for (int i = 1; i < 3; ++i)
+        if (o[i]->y < o[r]->y || (o[i]->y == o[r]->y && o[i]->x < o[r]->x)) r = i;
+    return r;
+}
+
 // A rectangle as rasterRectangle walks it: the covered pixels (inclusive, clipped) and the texture
 // coordinates in single precision — s, t at the first pixel centre and their change per two
 // pixels along X and down Y (an odd pixel of a pair adds half a step). False when it covers

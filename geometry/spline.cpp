@@ -122,6 +122,7 @@ struct Surface {
     bool genNormals = false, reverseFace = false;
     u32 weightCount = 0;
     bool spline = false;
+    bool colourRoundUp = false;  // AccuracyProfile::pspPatchColourRoundUp
     std::vector<SplineSpan> spansU, spansV;
 
     // t: local parameter (Bezier); g: global parameter patch + t (spline).
@@ -210,7 +211,10 @@ struct Surface {
         const float* col = in;
         if (hasColor) {
             for (int c = 0; c < 4; ++c) {
-                const float v = std::floor(col[c] + 0.5f);
+                // To nearest as PPSSPP's ToRGBA, or up as the PSP (AccuracyProfile::
+                // pspPatchColourRoundUp); a sum within 1/1024 above a whole number is that number
+                // (the float evaluation's own error, e.g. at a corner where one weight is 1).
+                const float v = colourRoundUp ? std::ceil(col[c] - 1.0f / 1024) : std::floor(col[c] + 0.5f);
                 out.color[c] = !(v > 0.0f) ? 0 : v >= 255.0f ? 255 : u8(v);
             }
         } else {
@@ -330,6 +334,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     s.hasWeights = reader.hasWeights();
     s.weightCount = std::min(reader.weightCount(), 8u);  // DecodedVertex::weights
     s.reverseFace = p.reverseFace;
+    s.colourRoundUp = acc.pspPatchColourRoundUp;
     // Normals are generated when the vertex has none and something reads them: lighting (ge-rules.md §3.2),
     // shade mapping, or projection mapping from the normal (TMAP source 2/3).
     s.genNormals = !s.hasNormal && (st.LTE_on() || st.TMAP_mode() == 2 || (st.TMAP_mode() == 1 && st.TMAP_proj() >= 2));

@@ -172,6 +172,37 @@ void emitExactDepthColor(std::string& s) {
          "                interpF(vec3(c0.z, c1.z, c2.z), g_w, r), interpF(vec3(c0.w, c1.w, c2.w), g_w, r));\n"
          "  return ivec4(clamp(roundEven(v), 0.0, 255.0));\n"
          "}\n";
+    // Gradient planes (raster.cpp setupGradients, colourFromGradients): per channel
+    // g = floor(4096·Σc_k·A_k / area) along X and the same with B along Y, A and B the edge
+    // coefficients in attribute order, area = ΣC_i; the value floor((4096·c_ref + gx·dx + gy·dy)
+    // / 4096) from the reference vertex, kept to 0–255.
+    const std::string hdr = recTexel(tri::kHeader);
+    s += "int64_t floorDiv64(int64_t n, int64_t d) {\n"
+         "  return n >= int64_t(0) ? n / d : -((-n + d - int64_t(1)) / d);\n"
+         "}\n"
+         "ivec4 gradColor(uvec3 pc) {\n"
+         "  int r = int((" + hdr + ".x >> " + std::to_string(tri::kGradientRefShift) + "u) & 3u);\n"
+         "  i64vec3 A = i64vec3(" + recI(tri::kIA) + ", " + recI(tri::kIA + 1) + ", " + recI(tri::kIA + 2) + ");\n"
+         "  i64vec3 B = i64vec3(" + recI(tri::kIB) + ", " + recI(tri::kIB + 1) + ", " + recI(tri::kIB + 2) + ");\n"
+         "  if (" + recFlag(tri::kFlagSwapped) + ") { A = A.yzx; B = B.yzx; }\n"
+         "  int64_t area = " + recI(tri::kIC) + " + " + recI(tri::kIC + 1) + " + " + recI(tri::kIC + 2) + ";\n"
+         "  int64_t dx = g_cx - int64_t(int(" + recTexel(tri::kQ) + ".w));\n"
+         "  int64_t dy = g_cy - int64_t(int(" + recTexel(tri::kRecipW) + ".w));\n"
+         "  ivec4 c0 = bytes4(pc.x), c1 = bytes4(pc.y), c2 = bytes4(pc.z);\n"
+         "  ivec4 cr = r == 0 ? c0 : (r == 1 ? c1 : c2);\n"
+         "  ivec4 outc;\n"
+         "  for (int ch = 0; ch < 4; ++ch) {\n"
+         "    int64_t sa = int64_t(c0[ch]) * A.x + int64_t(c1[ch]) * A.y + int64_t(c2[ch]) * A.z;\n"
+         "    int64_t sb = int64_t(c0[ch]) * B.x + int64_t(c1[ch]) * B.y + int64_t(c2[ch]) * B.z;\n"
+         "    int64_t gx = floorDiv64(int64_t(4096) * sa, area), gy = floorDiv64(int64_t(4096) * sb, area);\n"
+         "    int64_t q = (int64_t(cr[ch]) * int64_t(4096) + gx * dx + gy * dy) >> 12;\n"
+         "    outc[ch] = q < int64_t(0) ? 0 : (q > int64_t(255) ? 255 : int(q));\n"
+         "  }\n"
+         "  return outc;\n"
+         "}\n"
+         "ivec4 vertexColor(uvec3 pc, bool varies) {\n"
+         "  return " + recFlag(tri::kFlagColourGradients) + " ? gradColor(pc) : interpColor(pc, varies);\n"
+         "}\n";
 }
 
 // Texture coordinates, level of detail and W of a triangle's sample point (rasterTriangle).
@@ -653,7 +684,7 @@ void emitTextureFunction(FsText& g) {
     const FsKey& k = g.k;
     std::string& s = g.s;
     if (g.exact)
-        s += "  ivec4 prim = interpColor(" + recTexel(tri::kColors) + ".xyz, (" + recTexel(tri::kHeader) + ".x & " +
+        s += "  ivec4 prim = vertexColor(" + recTexel(tri::kColors) + ".xyz, (" + recTexel(tri::kHeader) + ".x & " +
              std::to_string(tri::kFlagColorVaries) + "u) != 0u);\n";
     else
         s += "  ivec4 prim = ivec4(v_color + vec4(1.0 / 1024.0));\n";
@@ -663,7 +694,7 @@ void emitTextureFunction(FsText& g) {
         return;
     }
     if (g.exact)
-        s += "  ivec3 sec = interpColor(" + recTexel(tri::kSecondary) + ".xyz, (" + recTexel(tri::kHeader) +
+        s += "  ivec3 sec = vertexColor(" + recTexel(tri::kSecondary) + ".xyz, (" + recTexel(tri::kHeader) +
              ".x & " + std::to_string(tri::kFlagSecVaries) + "u) != 0u).rgb;\n";
     else
         s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";

@@ -68,8 +68,8 @@ inline constexpr int kColors = 2;     // xyz: primary RGBA of o[i] (R in bits 0�
 inline constexpr int kSecondary = 3;  // xyz: secondary RGB of o[i]; w: quad origin x | y << 16
 inline constexpr int kS = 4;          // xyz: s of o[i]; w: level-0 width (float)
 inline constexpr int kT = 5;          // xyz: t of o[i]; w: level-0 height (float)
-inline constexpr int kQ = 6;          // xyz: q of o[i]
-inline constexpr int kRecipW = 7;     // xyz: 1/w of o[i] (1 in through mode)
+inline constexpr int kQ = 6;          // xyz: q of o[i]; w: gradient reference x (kFlagColourGradients)
+inline constexpr int kRecipW = 7;     // xyz: 1/w of o[i] (1 in through mode); w: gradient reference y
 inline constexpr int kClipW = 8;      // xyz: w of o[i]
 inline constexpr int kInts = 9;       // 12 int64 (2 per texel, low word first), see kI*
 // Rectangles (rasterRectangle): texture coordinates as running single-precision sums from the
@@ -90,6 +90,11 @@ inline constexpr u32 kFlagSecVaries = 1u << 6;    // secondary colour interpolat
 inline constexpr u32 kFlagSwapped = 1u << 7;      // negative area: edges in in0, in2, in1 order
 inline constexpr u32 kFlagThrough = 1u << 8;      // texture coordinates screen-linear
 inline constexpr int kEdgeThresholdShift = 9;      // bits 9–11: edge i needs E_i ≥ bit (top-left rule)
+// Colours stepped by gradient planes (geo::RasterParams::colourGradients): bits 12–13 the
+// reference vertex (index in attribute order, geo::colourGradientReference), its drawing
+// position (1/16 units, int bits) in kQ.w and kRecipW.w.
+inline constexpr u32 kFlagColourGradients = 1u << 14;
+inline constexpr int kGradientRefShift = 12;
 // Int64. Edge i (opposite the i-th vertex of in0, in1, in2 — or in0, in2, in1 when swapped):
 // E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). kIZ: the three vertex depths in
 // attribute order.

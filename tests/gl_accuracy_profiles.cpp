@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // One scene per switch of geometry/accuracy_profile.h, rendered with both profiles on the
-// software model, GL exact and GL hw (1x): the pixels each profile must give. Every scene fails
+// software model, GL exact and GL hw (1x) — GL hw where the switch applies to it: the pixels each profile must give. Every scene fails
 // when its switch is ignored by a backend (the two profiles' expected pixels differ).
 #include <cstring>
 #include <functional>
+#include <initializer_list>
+#include <set>
 #include <string>
 
 #include "backend/factory.h"
@@ -35,8 +37,9 @@ bool render(Where w, const geo::AccuracyProfile& acc, const Scene& scene, std::v
 }
 
 // Runs `psp` on each backend's render with the psp profile and `ppsspp` with the ppsspp one.
-void checkBothProfiles(const Scene& scene, const Check& psp, const Check& ppsspp) {
-    for (Where w : {Where::Soft, Where::GlExact, Where::GlHw}) {
+void checkBothProfiles(const Scene& scene, const Check& psp, const Check& ppsspp,
+                       std::initializer_list<Where> backends = {Where::Soft, Where::GlExact, Where::GlHw}) {
+    for (Where w : backends) {
         SCOPED_TRACE(w == Where::Soft ? "soft" : w == Where::GlExact ? "GL exact" : "GL hw");
         for (bool isPsp : {true, false}) {
             SCOPED_TRACE(isPsp ? "psp" : "ppsspp");
@@ -76,6 +79,8 @@ TEST(AccuracyProfiles, NamesRoundTrip) {
     EXPECT_NE(p.spriteFarEdgeExcluded, q.spriteFarEdgeExcluded);
     EXPECT_NE(p.pspBilinearTruncation, q.pspBilinearTruncation);
     EXPECT_NE(p.pspTriangleSampleCentre, q.pspTriangleSampleCentre);
+    EXPECT_NE(p.pspColourGradients, q.pspColourGradients);
+    EXPECT_NE(p.pspPatchColourRoundUp, q.pspPatchColourRoundUp);
 }
 
 // pspBilinearTruncation: a 1x1 through-mode sprite over a 2-texel texture (red, green), bilinear,
@@ -138,6 +143,88 @@ TEST(AccuracyProfiles, TriangleSampleCentre) {
             EXPECT_EQ(rgbAt(vram, 10, 9, 64), 0u);
             EXPECT_EQ(rgbAt(vram, 10, 10, 64), 0x00C000u);
             EXPECT_EQ(rgbAt(vram, 10, 8, 64), 0u);
+        });
+}
+
+// pspColourGradients: pspautotests primitives/immediate's Gouraud fan in through mode: a 40x40
+// quad from (260, 10) as a fan, green 255 on the top vertices and 127 on the bottom ones (blue
+// 255). The PSP's capture reads one green per row (kFanGreen, rows 10..49): 253, 250, 246, 243 …
+// where the exact values at the centres are 253.4, 250.2, 247.0, 243.8. PPSSPP samples 7/16 down
+// the pixel and rounds the float sum to nearest: 254 on row 10 (253.6), 247 on row 12 (247.2).
+// GL hw interpolates on the GPU and is not held to either rule.
+constexpr u8 kFanGreen[40] = {0xfd, 0xfa, 0xf6, 0xf3, 0xf0, 0xed, 0xea, 0xe6, 0xe3, 0xe0, 0xdd, 0xda, 0xd6, 0xd3,
+                              0xd0, 0xcd, 0xca, 0xc6, 0xc3, 0xc0, 0xbd, 0xba, 0xb6, 0xb3, 0xb0, 0xad, 0xaa, 0xa6,
+                              0xa3, 0xa0, 0x9d, 0x9a, 0x96, 0x93, 0x90, 0x8d, 0x8a, 0x86, 0x83, 0x80};
+void gouraudFanScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 512);
+    b.scissor(0, 0, 480, 272);
+    b.region(0, 0, 480, 272);
+    b.clear(CLEAR_COLOR, 0x00000000, 0);
+    b.shadeModel(true);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[4];
+    const float xy[4][2] = {{260, 10}, {300, 10}, {300, 50}, {260, 50}};
+    for (int i = 0; i < 4; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1], v[i].color = i < 2 ? 0xFFFFFF00u : 0xFFFF7F00u;
+    b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 4, nullptr, packVertices(vtype, v, 4).data());
+}
+
+TEST(AccuracyProfiles, ColourGradients) {
+    checkBothProfiles(
+        gouraudFanScene,
+        [](const std::vector<u8>& vram) {
+            for (int y = 10; y < 50; ++y)
+                for (int x : {260, 262, 281, 299})
+                    ASSERT_EQ(rgbAt(vram, x, y, 512), 0xFF0000u | u32(kFanGreen[y - 10]) << 8) << x << "," << y;
+        },
+        [](const std::vector<u8>& vram) {
+            EXPECT_EQ(rgbAt(vram, 270, 10, 512), 0xFFFE00u);
+            EXPECT_EQ(rgbAt(vram, 270, 12, 512), 0xFFF700u);
+        },
+        {Where::Soft, Where::GlExact});
+}
+
+// pspPatchColourRoundUp: a through-mode 4x4 Bezier patch (control rows 10 pixels apart, red 100
+// on the first row, 0 on the others), divided 4x4 and flat-shaded, so every pixel shows one
+// generated vertex's colour. The row at v = 1/4 evaluates to 100·(3/4)^3 = 42.19: 43 rounded up
+// on a PSP, 42 to nearest in PPSSPP; the other rows are 100, 12.5 (13 either way), 1.56 (2), 0.
+void flatPatchScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 64);
+    b.scissor(0, 0, 64, 64);
+    b.region(0, 0, 64, 64);
+    b.clear(CLEAR_COLOR, 0x00000000, 0);
+    b.shadeModel(false);
+    b.patchDivide(4, 4);
+    b.patchPrim(0);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[16];
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            BuildVertex& c = v[j * 4 + i];
+            c.x = float(10 + 10 * i), c.y = float(10 + 10 * j);
+            c.color = 0xFF000000u | (j == 0 ? 100u : 0u);
+        }
+    const std::vector<u8> data = packVertices(vtype, v, 16);
+    b.drawBezier(vtype, 4, 4, 0, b.place(data.data(), u32(data.size()), 4));
+}
+
+TEST(AccuracyProfiles, PatchColourRoundUp) {
+    auto reds = [](const std::vector<u8>& vram) {
+        std::set<u32> r;
+        for (int y = 10; y < 40; ++y)
+            for (int x = 10; x < 40; ++x) r.insert(rgbAt(vram, x, y, 64) & 0xFFu);
+        return r;
+    };
+    checkBothProfiles(
+        flatPatchScene,
+        [&](const std::vector<u8>& vram) {
+            const std::set<u32> r = reds(vram);
+            EXPECT_TRUE(r.count(43)) << "v = 1/4 rounded up";
+            EXPECT_FALSE(r.count(42));
+        },
+        [&](const std::vector<u8>& vram) {
+            const std::set<u32> r = reds(vram);
+            EXPECT_TRUE(r.count(42)) << "v = 1/4 rounded to nearest";
+            EXPECT_FALSE(r.count(43));
         });
 }
 

@@ -107,6 +107,14 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
     }
     if (!colConst) flags |= T::kFlagColorVaries;
     if (!secConst) flags |= T::kFlagSecVaries;
+    // Colour gradient planes (rasterTriangle's setupGradients): the shader forms them from the
+    // colours, the edge coefficients and the reference vertex.
+    if (rp.colourGradients && (!colConst || !secConst)) {
+        const int ref = geo::colourGradientReference(o);
+        flags |= T::kFlagColourGradients | (u32(ref) << T::kGradientRefShift);
+        putU32(r, T::kQ, 3, u32(o[ref]->x));
+        putU32(r, T::kRecipW, 3, u32(o[ref]->y));
+    }
 
     // Fog is interpolated unless fog is off or no vertex is fogged (then the byte is 255).
     putU32(r, T::kHeader, 1, 255u);
