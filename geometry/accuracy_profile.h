@@ -103,24 +103,60 @@ struct AccuracyProfile {
     constexpr bool operator==(const AccuracyProfile&) const = default;
 
     // "psp", "ppsspp", or "custom" for another mix of switches (the tools' --accuracy and
-    // compare's JSON carry the names).
+    // compare's JSON carry the names; a custom mix is named by the text that chose it).
     const char* name() const {
         if (*this == psp()) return "psp";
         if (*this == ppsspp()) return "ppsspp";
         return "custom";
     }
-    // The profile named `name` ("psp" or "ppsspp"); false for any other name.
-    static bool fromName(const char* name, AccuracyProfile& out) {
-        if (std::strcmp(name, "psp") == 0) {
-            out = psp();
-            return true;
-        }
-        if (std::strcmp(name, "ppsspp") == 0) {
-            out = ppsspp();
-            return true;
-        }
-        return false;
-    }
+    // The profile `name` chooses: "psp" or "ppsspp", optionally followed by switches turned on
+    // (+name) or off (-name), e.g. "ppsspp+pspColourGradients" or "psp-pspTriangleSampleCentre"
+    // (what one switch moves, measured on its own); false for anything else.
+    static bool fromName(const char* name, AccuracyProfile& out);
 };
+
+// Every switch by name: the tools' --accuracy BASE±SWITCH, the profile tests and the
+// divergence catalogue walk this table.
+struct AccuracySwitch {
+    const char* name;
+    bool AccuracyProfile::*member;
+};
+inline constexpr AccuracySwitch kAccuracySwitches[] = {
+    {"implicitAlphaNonZeroTest", &AccuracyProfile::implicitAlphaNonZeroTest},
+    {"clutSkipsAlphaTest", &AccuracyProfile::clutSkipsAlphaTest},
+    {"splineOpenKnotQuirk", &AccuracyProfile::splineOpenKnotQuirk},
+    {"zeroAreaTriangles", &AccuracyProfile::zeroAreaTriangles},
+    {"pspSpritePosition", &AccuracyProfile::pspSpritePosition},
+    {"spriteFarEdgeExcluded", &AccuracyProfile::spriteFarEdgeExcluded},
+    {"pspBilinearTruncation", &AccuracyProfile::pspBilinearTruncation},
+    {"pspTriangleSampleCentre", &AccuracyProfile::pspTriangleSampleCentre},
+    {"pspColourGradients", &AccuracyProfile::pspColourGradients},
+    {"pspPatchColourRoundUp", &AccuracyProfile::pspPatchColourRoundUp},
+};
+
+// Every member is a switch, and every switch is in the table.
+static_assert(sizeof(AccuracyProfile) == sizeof(kAccuracySwitches) / sizeof(kAccuracySwitches[0]));
+
+inline bool AccuracyProfile::fromName(const char* name, AccuracyProfile& out) {
+    const char* end = name;
+    while (*end && *end != '+' && *end != '-') ++end;
+    const size_t baseLen = size_t(end - name);
+    AccuracyProfile a;
+    if (baseLen == 3 && std::strncmp(name, "psp", 3) == 0) a = psp();
+    else if (baseLen == 6 && std::strncmp(name, "ppsspp", 6) == 0) a = ppsspp();
+    else return false;
+    while (*end) {
+        const bool on = *end == '+';
+        const char* tok = ++end;
+        while (*end && *end != '+' && *end != '-') ++end;
+        const size_t len = size_t(end - tok);
+        bool found = false;
+        for (const AccuracySwitch& sw : kAccuracySwitches)
+            if (std::strlen(sw.name) == len && std::strncmp(sw.name, tok, len) == 0) a.*sw.member = on, found = true;
+        if (!found) return false;
+    }
+    out = a;
+    return true;
+}
 
 }  // namespace ge::geo

@@ -69,18 +69,27 @@ TEST(AccuracyProfiles, NamesRoundTrip) {
     EXPECT_FALSE(geo::AccuracyProfile::fromName("hardware", a));
     a.zeroAreaTriangles = false;
     EXPECT_STREQ(a.name(), "custom");
-    // Every switch differs between the two profiles (a switch exists only where they disagree).
+    // Every switch differs between the two profiles (a switch exists only where they disagree),
+    // and each can be flipped by name from either base.
     const geo::AccuracyProfile p = geo::AccuracyProfile::psp(), q = geo::AccuracyProfile::ppsspp();
-    EXPECT_NE(p.implicitAlphaNonZeroTest, q.implicitAlphaNonZeroTest);
-    EXPECT_NE(p.clutSkipsAlphaTest, q.clutSkipsAlphaTest);
-    EXPECT_NE(p.splineOpenKnotQuirk, q.splineOpenKnotQuirk);
-    EXPECT_NE(p.zeroAreaTriangles, q.zeroAreaTriangles);
-    EXPECT_NE(p.pspSpritePosition, q.pspSpritePosition);
-    EXPECT_NE(p.spriteFarEdgeExcluded, q.spriteFarEdgeExcluded);
-    EXPECT_NE(p.pspBilinearTruncation, q.pspBilinearTruncation);
-    EXPECT_NE(p.pspTriangleSampleCentre, q.pspTriangleSampleCentre);
-    EXPECT_NE(p.pspColourGradients, q.pspColourGradients);
-    EXPECT_NE(p.pspPatchColourRoundUp, q.pspPatchColourRoundUp);
+    for (const geo::AccuracySwitch& sw : geo::kAccuracySwitches) {
+        SCOPED_TRACE(sw.name);
+        EXPECT_NE(p.*sw.member, q.*sw.member);
+        const std::string toPpsspp = std::string("psp") + (q.*sw.member ? "+" : "-") + sw.name;
+        ASSERT_TRUE(geo::AccuracyProfile::fromName(toPpsspp.c_str(), a));
+        EXPECT_EQ(a.*sw.member, q.*sw.member);
+        EXPECT_STREQ(a.name(), "custom");
+        geo::AccuracyProfile back = a;
+        back.*sw.member = p.*sw.member;
+        EXPECT_EQ(back, p) << "only the named switch moved";
+    }
+    ASSERT_TRUE(geo::AccuracyProfile::fromName("ppsspp+pspColourGradients-zeroAreaTriangles", a));
+    EXPECT_TRUE(a.pspColourGradients);
+    EXPECT_FALSE(a.zeroAreaTriangles);
+    EXPECT_TRUE(a.clutSkipsAlphaTest);
+    EXPECT_FALSE(geo::AccuracyProfile::fromName("psp+noSuchRule", a));
+    EXPECT_FALSE(geo::AccuracyProfile::fromName("pspx", a));
+    EXPECT_FALSE(geo::AccuracyProfile::fromName("psp+", a));
 }
 
 // pspBilinearTruncation: a 1x1 through-mode sprite over a 2-texel texture (red, green), bilinear,

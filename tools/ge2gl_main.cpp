@@ -13,6 +13,7 @@
 #include <iostream>
 #include <map>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/disasm.h"
 #include "hle/dump/player.h"
 #include "hle/dump/ppdmp.h"
@@ -293,8 +294,21 @@ struct Cli {
     void addAccuracyOpt(CLI::App* sc) {
         sc->add_option("--accuracy", ropt.accuracy,
                        "psp (what the GE does: every hardware-measured rule; default) | ppsspp (PPSSPP's software "
-                       "renderer's pixels, its optimisation artefacts included: compare against PPSSPP references)")
-            ->check(CLI::IsMember({"psp", "ppsspp"}));
+                       "renderer's pixels, its optimisation artefacts included: compare against PPSSPP references); "
+                       "either may be followed by +SWITCH or -SWITCH to turn one rule on or off, e.g. "
+                       "ppsspp+pspColourGradients (switches: docs/accuracy.md)")
+            ->check(accuracyValidator());
+    }
+    static CLI::Validator accuracyValidator() {
+        return CLI::Validator(
+            [](std::string& v) {
+                geo::AccuracyProfile a;
+                if (geo::AccuracyProfile::fromName(v.c_str(), a)) return std::string();
+                std::string names;
+                for (const geo::AccuracySwitch& sw : geo::kAccuracySwitches) names += std::string(" ") + sw.name;
+                return "unknown accuracy profile '" + v + "': psp or ppsspp, then +SWITCH/-SWITCH of" + names;
+            },
+            "PROFILE[+SWITCH|-SWITCH...]");
     }
     void addBackendOpts(CLI::App* sc) {
         sc->add_option("--replay-timing", replayTiming,
@@ -443,7 +457,7 @@ struct Cli {
         fuzz->add_option("--ref-accuracy", fuzzOpt.refAccuracy,
                          "accuracy profile of the reference side (default: --accuracy's); with --accuracy psp "
                          "--ref-accuracy ppsspp the divergences are those of the profiles' switches")
-            ->check(CLI::IsMember({"psp", "ppsspp"}));
+            ->check(accuracyValidator());
         fuzz->add_option("--seed", fuzzOpt.seed, "first seed (case i uses seed + i; default 1)");
         fuzz->add_option("--count", fuzzOpt.count, "cases (default 100)")->check(wholeNumber(u64(1) << 40));
         fuzz->add_option("--out", fuzzOpt.outDir, "write minimised failing cases as DIR/case-SEED.ppdmp");

@@ -14,7 +14,7 @@ namespace ge::tools {
 backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
     backend::BackendOptions bo;
     if (!geo::AccuracyProfile::fromName(opt.accuracy.c_str(), bo.accuracy)) {
-        err = "unknown accuracy profile '" + opt.accuracy + "' (use psp or ppsspp)";
+        err = "unknown accuracy profile '" + opt.accuracy + "' (use psp or ppsspp, optionally +SWITCH/-SWITCH)";
         return {};
     }
     if (opt.backend == "null") {
