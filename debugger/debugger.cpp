@@ -219,7 +219,8 @@ bool drawVertices(const Memory& mem, const GeState& st, u32 word, const geo::Acc
     std::vector<DecodedVertex> in;
     if (!decodeDrawVertices(mem, st, vtype, st.vertexAddr, st.indexAddr, count, in, &err)) return false;
     const VertexReader reader(mem, st, vtype);
-    geo::TransformState ts = geo::makeTransformState(st, vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
+    geo::TransformState ts =
+        geo::makeTransformState(st, vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, nullptr, acc);
     ts.sprite = ((word >> 16) & 7) == GE_PRIM_RECTANGLES && acc.pspSpritePosition;
     for (const DecodedVertex& v : in) {
         geo::ClipVertex cv;

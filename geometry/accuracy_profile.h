@@ -37,6 +37,25 @@ struct AccuracyProfile {
     // §8.11) draws nothing for them. Moves Valkyria Chronicles' strip joins (0.26 → 0.057 with
     // it), Locoroco, Virtua Tennis.
     bool zeroAreaTriangles = false;
+    // PPSSPP normalises the spot direction LD as v / |v| with a float length (Lighting.cpp
+    // ComputeState, Vec3<float>::Normalize in Math3D.cpp): on x86 a zero or infinite LD divides
+    // to the default NaN, whose sign bit is set, so the spot cosine takes 0 and the light is dark;
+    // a NaN component leaves the NaN of the first NaN component. A PSP lights an LD of +∞ fully
+    // (pspautotests commands/light "Spot INFINITY": 3 checkpoints; zero, −∞ and NaN agree with
+    // it; geometry/lighting.cpp makeLightingState). No frametest moves.
+    bool spotDirectionDivide = false;
+    // Lighting's vectors normalised as PPSSPP's x86 build does (Lighting.cpp, Math3D.cpp):
+    // lengths as float sums x² + (y² + z²) (Vec3<float>::Length in NormalizeOr001: the light
+    // vectors, the world normal) and the half vector H multiplied by the approximate reciprocal
+    // square root of (x² + y²) + z² (NormalizedOr001 with SSE4: rsqrtps after dpps). ge2gl's own
+    // (the PSP's precision is not known; it passes the two light checkpoints this moves): lengths
+    // summed in double, one division per component. With spotDirectionDivide it takes
+    // commands/light 163 → 158 of 201, PPSSPP's count. Moves Need for Speed Carbon (0.0696 →
+    // 0.0325 against its reference) and Pursuit Force UCUS98703 (0.0001 → 0.0005). PPSSPP's
+    // source also normalises shade-mapping light directions and the projection-mapping normal
+    // with the approximation; taking those too moved Need for Speed Carbon to 0.0952, away from
+    // its reference, so they are not part of the switch (docs/accuracy.md).
+    bool sseVectorArithmetic = false;
     // Transform-mode RECTANGLES reach the screen by the PSP's sprite rule: float24 viewport
     // arithmetic and the screen position rounded up to the next 1/16 pixel before OFFSETX/Y is
     // taken off (geometry/transform.cpp projectToScreen; docs/conformance.md "Sprites":
@@ -97,6 +116,8 @@ struct AccuracyProfile {
         a.clutSkipsAlphaTest = true;
         a.splineOpenKnotQuirk = true;
         a.zeroAreaTriangles = true;
+        a.spotDirectionDivide = true;
+        a.sseVectorArithmetic = true;
         return a;
     }
 
@@ -126,6 +147,8 @@ inline constexpr AccuracySwitch kAccuracySwitches[] = {
     {"clutSkipsAlphaTest", &AccuracyProfile::clutSkipsAlphaTest},
     {"splineOpenKnotQuirk", &AccuracyProfile::splineOpenKnotQuirk},
     {"zeroAreaTriangles", &AccuracyProfile::zeroAreaTriangles},
+    {"spotDirectionDivide", &AccuracyProfile::spotDirectionDivide},
+    {"sseVectorArithmetic", &AccuracyProfile::sseVectorArithmetic},
     {"pspSpritePosition", &AccuracyProfile::pspSpritePosition},
     {"spriteFarEdgeExcluded", &AccuracyProfile::spriteFarEdgeExcluded},
     {"pspBilinearTruncation", &AccuracyProfile::pspBilinearTruncation},

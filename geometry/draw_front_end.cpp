@@ -80,7 +80,7 @@ bool DrawFrontEnd::prim(const Memory& mem, const GeState& st, const PrimPacket& 
 // continued PRIM, and the draw order (those first) into seq_. False on unreadable index data.
 bool DrawFrontEnd::decode(const Memory& mem, const GeState& st, const PrimPacket& p) {
     VertexReader reader(mem, st, p.vtype);
-    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_);
+    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_, acc_);
     ts_.sprite = p.prim == GE_PRIM_RECTANGLES && acc_.pspSpritePosition;
     cverts_.assign(pending_.begin(), pending_.end());
     seq_.clear();
@@ -132,7 +132,7 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
     if (tess.verts.empty()) return true;
     VertexReader probe(mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (docs/ge-rules.md §3.2).
-    ts_ = makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal() || st.LTE_on(), &fold_);
+    ts_ = makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal() || st.LTE_on(), &fold_, acc_);
     cverts_.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
         transformVertex(ts_, tess.verts[i], cverts_[i]);
@@ -193,7 +193,7 @@ void DrawFrontEnd::keepOpenVertices(const Memory& mem, const GeState& st, const 
             break;
         default: return;
     }
-    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_);
+    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_, acc_);
     const bool skin = reader.hasWeights() && !reader.through();
     for (size_t k = 0; k < count; ++k) {
         DecodedVertex dv;

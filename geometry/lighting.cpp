@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__SSE__) || defined(_M_X64)
+#include <xmmintrin.h>
+#endif
 
 namespace ge::geo {
 
@@ -32,9 +35,54 @@ void addTerm(int acc[3], const int light[3], const int mat[3], int s) {
 
 }  // namespace
 
-float normalizeOr001(float v[3]) {
+namespace {
+
+// rsqrtss: the approximation PPSSPP's x86 build normalises with (the host's own on x86).
+float approxRsqrt(float x) {
+#if defined(__SSE__) || defined(_M_X64)
+    return _mm_cvtss_f32(_mm_rsqrt_ss(_mm_set_ss(x)));
+#else
+    return 1.0f / std::sqrt(x);
+#endif
+}
+
+// PPSSPP's Vec3<float>::Length on x86 (Math3D.cpp): x² + (y² + z²) in float, then the root.
+float floatLength(const float v[3]) {
+    const float xx = v[0] * v[0], yy = v[1] * v[1], zz = v[2] * v[2];
+    return std::sqrt(xx + (yy + zz));
+}
+
+// The spot cosine for every vertex when PPSSPP's LD / |LD| (AccuracyProfile::spotDirectionDivide)
+// gives NaN, else −1 and `dir` normalised by that division. On x86 0/0 and ∞/∞ give the default
+// NaN, sign set (cosine 0); a NaN component's own NaN reaches the cosine first (its sign: 1 or 0).
+float spotByDivision(float dir[3]) {
+    for (int i = 0; i < 3; ++i)
+        if (std::isnan(dir[i])) return std::signbit(dir[i]) ? 0.0f : 1.0f;
+    const float len = floatLength(dir);
+    if (len == 0.0f || std::isinf(len)) {
+        // A zero vector, or one with an infinite component, has a NaN component after the
+        // division; an overflowing finite one divides to zeros (cosine 0 as well); one whose squares underflow
+        // to a zero length is taken as zero (not measured).
+        return 0.0f;
+    }
+    for (int i = 0; i < 3; ++i) dir[i] /= len;
+    return -1.0f;
+}
+
+}  // namespace
+
+void normalizeRsqrtOr001(float v[3]) {
+    const float xx = v[0] * v[0], yy = v[1] * v[1], zz = v[2] * v[2];
+    const float r = approxRsqrt((xx + yy) + zz);
+    for (int i = 0; i < 3; ++i) {
+        v[i] *= r;
+        if (std::isnan(v[i])) v[i] = i == 2 ? 1.0f : 0.0f;
+    }
+}
+
+float normalizeOr001(float v[3], bool sse) {
     const double l2 = double(v[0]) * v[0] + double(v[1]) * v[1] + double(v[2]) * v[2];
-    const float len = float(std::sqrt(l2));
+    const float len = sse ? floatLength(v) : float(std::sqrt(l2));
     if (!(len > 0.0f) || !std::isfinite(len)) {
         v[0] = 0.0f, v[1] = 0.0f, v[2] = 1.0f;
         return 0.0f;
@@ -50,8 +98,9 @@ float lightPow(float base, float exponent) {
     return base;  // a negative base is not raised to the power
 }
 
-LightingState makeLightingState(const GeState& st, bool vertexHasColor) {
+LightingState makeLightingState(const GeState& st, bool vertexHasColor, const AccuracyProfile& acc) {
     LightingState ls;
+    ls.sse = acc.sseVectorArithmetic;
     for (int n = 0; n < 4; ++n) {
         LightSource& L = ls.lights[n];
         L.enabled = st.LE_on(n);
@@ -63,7 +112,7 @@ LightingState makeLightingState(const GeState& st, bool vertexHasColor) {
         L.specular = comp == 1;
         L.poweredDiffuse = comp == 2;
         L.pos[0] = st.LX_value(n), L.pos[1] = st.LY_value(n), L.pos[2] = st.LZ_value(n);
-        if (L.directional) normalizeOr001(L.pos);  // ge-rules.md §8.12: zero → (0, 0, 1)
+        if (L.directional) normalizeOr001(L.pos, ls.sse);  // ge-rules.md §8.12: zero → (0, 0, 1)
         L.att[0] = st.LKA_value(n), L.att[1] = st.LKB_value(n), L.att[2] = st.LKC_value(n);
         if (L.spot) {
             // LD need not be normalised (manual §9.2.3). One that cannot be (measured on a PSP,
@@ -73,14 +122,18 @@ LightingState makeLightingState(const GeState& st, bool vertexHasColor) {
             // the NaN rule below turns into 1 (positive: full light) or 0. With mixed special
             // components the first one decides (not measured).
             L.spotDir[0] = st.LDX_value(n), L.spotDir[1] = st.LDY_value(n), L.spotDir[2] = st.LDZ_value(n);
-            for (float c : L.spotDir)
-                if (!std::isfinite(c)) {
-                    L.spotForced = std::signbit(c) ? 0.0f : 1.0f;
-                    break;
-                }
-            if (L.spotForced < 0 && L.spotDir[0] == 0.0f && L.spotDir[1] == 0.0f && L.spotDir[2] == 0.0f)
-                L.spotForced = 0.0f;
-            if (L.spotForced < 0) normalizeOr001(L.spotDir);
+            if (acc.spotDirectionDivide) {
+                L.spotForced = spotByDivision(L.spotDir);
+            } else {
+                for (float c : L.spotDir)
+                    if (!std::isfinite(c)) {
+                        L.spotForced = std::signbit(c) ? 0.0f : 1.0f;
+                        break;
+                    }
+                if (L.spotForced < 0 && L.spotDir[0] == 0.0f && L.spotDir[1] == 0.0f && L.spotDir[2] == 0.0f)
+                    L.spotForced = 0.0f;
+                if (L.spotForced < 0) normalizeOr001(L.spotDir);
+            }
             L.spotExp = st.LKS_value(n);
             L.spotCutoff = st.LKO_value(n);
             if (std::isnan(L.spotCutoff) && std::signbit(L.spotCutoff)) L.spotCutoff = 0.0f;
@@ -126,7 +179,7 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
         if (!L.directional) {
             // L = light − vertex, d = |L| (ge-rules.md §8.12); attenuation 9-3 clamped to [0, 1].
             Lv[0] -= worldPos[0], Lv[1] -= worldPos[1], Lv[2] -= worldPos[2];
-            const float d = normalizeOr001(Lv);
+            const float d = normalizeOr001(Lv, ls.sse);
             float att = 1.0f / (L.att[0] + L.att[1] * d + L.att[2] * d * d);
             if (!(att > 0.0f)) att = 0.0f;  // negative, NaN
             else if (att > 1.0f) att = 1.0f;
@@ -163,7 +216,8 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float N
         if (L.specular && ndotl >= 0.0f) {  // specular only when N·L ≥ 0 (ge-rules.md §8.12)
             // H = normalize(normalize(L) + E), E = (0, 0, 1) (9-8).
             float H[3] = {Lv[0], Lv[1], Lv[2] + 1.0f};
-            normalizeOr001(H);
+            if (ls.sse) normalizeRsqrtOr001(H);
+            else normalizeOr001(H);
             const float sp = lightPow(dot3(H, N), ls.specularExp);
             if (sp > 0.0f) addTerm(spec, L.specularColor, msc, lightScale(attspot * sp));
         }

@@ -10,6 +10,7 @@
 //   per-light term  ((2·Lc + 1)·(2·Mc + 1)·s) >> 19,  s = min(512, ceil(512·k + 1))
 // where k is attenuation·spot·(N·L, its power, or the specular power).
 #pragma once
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_state.h"
 #include "hle/types.h"
 
@@ -43,9 +44,12 @@ struct LightingState {
     bool ambientFromVertex = false, diffuseFromVertex = false, specularFromVertex = false;
     bool separateSpecular = false;   // CMD_LMODE = 1: specular goes to the secondary colour
     float specularExp = 0;           // CMD_MK
+    bool sse = false;                // AccuracyProfile::sseVectorArithmetic (normalizeOr001)
 };
 
-LightingState makeLightingState(const GeState& st, bool vertexHasColor);
+// `acc`: the spot direction and vector arithmetic switches (spotDirectionDivide,
+// sseVectorArithmetic).
+LightingState makeLightingState(const GeState& st, bool vertexHasColor, const AccuracyProfile& acc = {});
 
 // The GE's power function for lighting (ge-rules.md §8.9): an exponent ≤ 0 (or a negative NaN) gives 1, and a
 // base ≤ 0 is returned unchanged (not raised to the power).
@@ -58,7 +62,14 @@ void lightVertex(const LightingState& ls, const float worldPos[3], const float w
                  const u8 vertexColor[4], u8 primary[4], u8 secondary[3]);
 
 // Normalises v in place and returns its previous length; a zero (or non-finite) vector becomes
-// (0, 0, 1) as the GE's lighting does (ge-rules.md §8.12).
-float normalizeOr001(float v[3]);
+// (0, 0, 1) as the GE's lighting does (ge-rules.md §8.12). The length is summed in double, or
+// with `sse` (AccuracyProfile::sseVectorArithmetic) as PPSSPP's Vec3<float>::Length sums it in
+// float: x² + (y² + z²).
+float normalizeOr001(float v[3], bool sse = false);
+// PPSSPP's x86 NormalizedOr001 (Math3D.cpp, SSE4), as Lighting.cpp normalises the half vector:
+// v times the approximate reciprocal square root of (x² + y²) + z² (dpps, rsqrtps; the host's
+// own rsqrtss on x86, where PPSSPP's renders come from; 1/sqrt elsewhere); components that come
+// out NaN take (0, 0, 1)'s, lane by lane as PPSSPP's mask does.
+void normalizeRsqrtOr001(float v[3]);
 
 }  // namespace ge::geo

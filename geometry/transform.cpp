@@ -55,8 +55,10 @@ void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
         out[r] = (geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1])) + (geTerm(m[8 + r], p[2]) + m[12 + r]);
 }
 
-TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold) {
+TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold,
+                                  const AccuracyProfile& acc) {
     TransformState ts;
+    ts.sseNormalise = acc.sseVectorArithmetic;
     ts.through = (vtype >> 23) & 1;
     ts.hasColor = hasColor;
     ts.hasNormal = hasNormal;
@@ -151,7 +153,7 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
     }
 
     ts.lighting = st.LTE_on();
-    if (ts.lighting) ts.light = makeLightingState(st, hasColor);
+    if (ts.lighting) ts.light = makeLightingState(st, hasColor, acc);
     ts.normalReverse = st.NREV_on();
     if (ts.texMap == 2) {
         // Shade mapping uses the raw light positions, normalised (zero → (0, 0, 1)), whatever
@@ -279,7 +281,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     float worldNormal[3] = {0.0f, 0.0f, 1.0f};
     if (ts.hasNormal && (ts.lighting || ts.texMap == 2)) {
         mulDir3x4(ts.world, normal, worldNormal);
-        normalizeOr001(worldNormal);
+        normalizeOr001(worldNormal, ts.sseNormalise);
     }
 
     // Texture coordinates (manual §13.1, §13.2).

@@ -54,6 +54,9 @@ struct TransformState {
     float fogEnd = 0, fogSlope = 0;
     bool lighting = false;
     LightingState light;
+    // The world normal's length summed in float, as PPSSPP's NormalizeOr001 does
+    // (AccuracyProfile::sseVectorArithmetic).
+    bool sseNormalise = false;
     bool normalReverse = false;  // CMD_NREV
     bool hasNormal = false, hasColor = false;
     float shadeLight[2][3] = {};  // normalised positions of the TSHADE lights (S, T)
@@ -80,8 +83,10 @@ struct MatrixFold {
     float worldViewProj[16] = {}, viewProj[16] = {};
     bool valid = false;
 };
+// `acc`: the vector arithmetic switches lighting and texture generation read
+// (AccuracyProfile::spotDirectionDivide, sseVectorArithmetic).
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal,
-                                  MatrixFold* fold = nullptr);
+                                  MatrixFold* fold = nullptr, const AccuracyProfile& acc = {});
 
 // Processes one decoded vertex (morphing and skinning already applied) into `out`, including the
 // screen mapping and the range flags.

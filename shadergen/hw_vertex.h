@@ -89,6 +89,7 @@
 #include <cstddef>
 #include <string>
 
+#include "geometry/accuracy_profile.h"
 #include "hle/ge_state.h"
 #include "hle/types.h"
 #include "shadergen/shader_keys.h"
@@ -200,7 +201,10 @@ inline constexpr int kHwVsUniformVec4 = int(sizeof(HwVsUniforms) / 16);
 // Fills every field from the state (through geo::makeTransformState, so the folded matrices,
 // normalised directions and fog specials are the CPU's own values). The vertex format is the
 // state's VTYPE.
-void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u);
+// `acc`: the profile's lighting switches that the uniforms carry (spotDirectionDivide: the spot
+// cosine forced for an LD that cannot be normalised); sseVectorArithmetic's approximations are
+// not reproduced on the GPU.
+void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u, const geo::AccuracyProfile& acc = {});
 
 // GLSL for a key. False + err only for keys the generator cannot express (none today).
 bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err = nullptr);

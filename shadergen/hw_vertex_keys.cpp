@@ -191,12 +191,14 @@ HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog) {
     return k;
 }
 
-void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u) {
+void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u, const geo::AccuracyProfile& acc) {
     std::memset(static_cast<void*>(&u), 0, sizeof u);
     // The transform-mode state of this VTYPE, computed by the code the CPU path runs.
     const u32 vtype = st.op(GE_CMD_VTYPE) & ~(1u << 23);
     const bool hasColor = ((vtype >> 2) & 7) >= 4, hasNormal = ((vtype >> 5) & 3) != 0;
-    const geo::TransformState ts = geo::makeTransformState(st, vtype, hasColor, hasNormal);
+    geo::AccuracyProfile lightingOnly;  // the GPU normalises exactly (see hw_vertex.h)
+    lightingOnly.spotDirectionDivide = acc.spotDirectionDivide;
+    const geo::TransformState ts = geo::makeTransformState(st, vtype, hasColor, hasNormal, nullptr, lightingOnly);
     std::memcpy(u.worldViewProj, ts.worldViewProj, sizeof u.worldViewProj);
     std::memcpy(u.viewProj, ts.viewProj, sizeof u.viewProj);
     std::memcpy(u.world, ts.world, sizeof u.world);

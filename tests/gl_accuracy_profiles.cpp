@@ -5,6 +5,7 @@
 #include <cstring>
 #include <functional>
 #include <initializer_list>
+#include <limits>
 #include <set>
 #include <string>
 
@@ -235,6 +236,80 @@ TEST(AccuracyProfiles, PatchColourRoundUp) {
             EXPECT_TRUE(r.count(42)) << "v = 1/4 rounded to nearest";
             EXPECT_FALSE(r.count(43));
         });
+}
+
+// A transform-mode quad over clip (−0.5..0.5)² (pixels 120..359 × 68..203), normal (0, 0, 1), lit
+// by light 0 of `type` at `pos` with only the colours given (black elsewhere: no global ambient,
+// emissive or other light), white materials, MK = 1.
+void litQuadScene(ListBuilder& b, u32 type, u32 comps, const float pos[3], u32 lightComponents, u32 rgb,
+                  const float spotDir[3]) {
+    testscene::screenFrame(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    b.setMatrix(GeMatrix::World, id);
+    b.setMatrix(GeMatrix::View, id);
+    b.setMatrix(GeMatrix::Proj, id);
+    b.enable(GE_CMD_BCE, false);
+    b.enable(GE_CMD_LTE, true);
+    b.enable(GE_CMD_LE0, true);
+    b.ambient(0xFF000000);
+    b.materialAmbient(0xFFFFFFFF);
+    b.materialDiffuse(0xFFFFFF);
+    b.materialSpecular(0xFFFFFF);
+    b.materialEmissive(0);
+    b.specularPower(1.0f);
+    b.light(0, type, comps, pos);
+    b.lightAtt(0, 1, 0, 0);
+    b.lightColor(0, LIGHT_AMBIENT | LIGHT_DIFFUSE | LIGHT_SPECULAR, 0);
+    b.lightColor(0, lightComponents, rgb);
+    if (spotDir) b.lightSpot(0, spotDir, 1.0f, 0.0f);
+    constexpr u32 vtype = vt::NRM_F | vt::POS_F;
+    BuildVertex v[4];
+    const float xy[4][2] = {{-0.5f, 0.5f}, {0.5f, 0.5f}, {0.5f, -0.5f}, {-0.5f, -0.5f}};
+    for (int i = 0; i < 4; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1];
+    b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 4, nullptr, packVertices(vtype, v, 4).data());
+}
+
+// spotDirectionDivide: a spot light at (0, 0, 1) with LD = (+∞, +∞, +∞), red ambient. A PSP
+// lights it fully (pspautotests commands/light "Spot INFINITY"): red 255; PPSSPP divides LD by
+// its infinite length, the cosine is NaN and the light dark: black. GL hw carries the forced
+// cosine in its uniforms and follows both.
+void infiniteSpotScene(ListBuilder& b) {
+    const float pos[3] = {0, 0, 1};
+    const float inf = std::numeric_limits<float>::infinity();
+    const float dir[3] = {inf, inf, inf};
+    litQuadScene(b, 2, 0, pos, LIGHT_AMBIENT, 0x0000FF, dir);
+}
+
+TEST(AccuracyProfiles, SpotDirectionDivide) {
+    checkBothProfiles(
+        infiniteSpotScene, [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 240, 136, 512), 0x0000FFu); },
+        [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 240, 136, 512), 0u); });
+}
+
+// sseVectorArithmetic: a directional light toward (0.5, 0.5, 0) with only a blue specular
+// colour, over the quad's normal (0, 0, 1) (pspautotests commands/light "Diffuse 0.0 - Direc
+// A + D + pow(S)"): N·L = 0, H = (0.5, 0.5, 0.707…), N·H = 0.70711, s = ceil(512·0.70711 + 1) =
+// 364, blue (511·511·364) >> 19 = 181 (0xb5, what the PSP reads). PPSSPP normalises H with
+// rsqrtss: N·H a hair under, s = 363, blue 180 (0xb4) — on an x86 host, whose rsqrtss is the
+// one PPSSPP used; elsewhere the exact root stands in. GL hw lights on the GPU with exact roots
+// (not held to the switch).
+void specularHalfVectorScene(ListBuilder& b) {
+    const float pos[3] = {0.5f, 0.5f, 0.0f};
+    litQuadScene(b, 0, 1, pos, LIGHT_SPECULAR, 0xFF0000, nullptr);
+}
+
+TEST(AccuracyProfiles, SseVectorArithmetic) {
+#if defined(__SSE__) || defined(_M_X64)
+    constexpr u32 kPpssppBlue = 0xB4;
+#else
+    constexpr u32 kPpssppBlue = 0xB5;
+#endif
+    checkBothProfiles(
+        specularHalfVectorScene,
+        [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 240, 136, 512), 0xB50000u); },
+        [](const std::vector<u8>& vram) { EXPECT_EQ(rgbAt(vram, 240, 136, 512), kPpssppBlue << 16); },
+        {Where::Soft, Where::GlExact});
 }
 
 // implicitAlphaNonZeroTest: an alpha-0 source-alpha blend (A = As, B = 1 − As) without depth

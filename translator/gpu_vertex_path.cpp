@@ -135,7 +135,7 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
         }
         out.indexed = true;
     }
-    shadergen::hwVsUniformsFromState(st, out.uniforms);
+    shadergen::hwVsUniformsFromState(st, out.uniforms, acc_);
     ++stats_.gpu;
     return true;
 }
