@@ -265,9 +265,13 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         const float k = ts.normalReverse ? -1.0f : 1.0f;  // CMD_NREV (manual §9)
         normal[0] = in.nrm[0] * k, normal[1] = in.nrm[1] * k, normal[2] = in.nrm[2] * k;
     }
-    float world[3], viewPos[3];
-    mulPoint3x4(ts.world, model, world);
-    mulPoint3x4(ts.view, world, viewPos);
+    // World and view positions only where something reads them: the clip position when it is not
+    // made from the combined matrix, lighting (world), fog (view Z). The products are the same
+    // when they are made; skipping them changes nothing else.
+    float world[3] = {}, viewPos[3] = {};
+    const bool needView = (!ts.combinedClip && !ts.worldToClip) || (ts.fog && ts.fogFixed < 0);
+    if (needView || !ts.combinedClip || ts.lighting) mulPoint3x4(ts.world, model, world);
+    if (needView) mulPoint3x4(ts.view, world, viewPos);
     if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
     else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
     else mulPoint4x4(ts.proj, viewPos, out.clip);
