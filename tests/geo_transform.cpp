@@ -320,6 +320,30 @@ TEST(GeoTransform, NanAndDenormalMatrixTerms) {
     mulDir3x4(m12, d, o3);
     EXPECT_EQ(o3[0], 0.0f);
 
+    // The same through the point products, whose plain-float shortcut must not see a denormal
+    // as a factor (IEEE: 1e-40·1e30 = 1e-10; the GE: 0) …
+    float m4[16] = {};
+    m4[0] = 1e-40f, m4[5] = 1, m4[10] = 1, m4[15] = 1;
+    const float big[3] = {1e30f, 2, 3};
+    mulPoint4x4(m4, big, out);
+    EXPECT_EQ(out[0], 0.0f);
+    const float m3[12] = {1e-40f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+    mulPoint3x4(m3, big, o3);
+    EXPECT_EQ(o3[0], 0.0f);
+    EXPECT_EQ(o3[1], 2.0f);
+    // … nor give a zero result the sign IEEE products would: zero elements against negative
+    // coordinates are −0 in IEEE, +0 as GE terms; with a −0 translation the IEEE sum is −0, the
+    // GE's +0 (a W or Z of −0 would flip a later division's infinity).
+    float mz[16] = {};
+    mz[12] = mz[13] = mz[14] = mz[15] = -0.0f;
+    const float neg[3] = {-1, -2, -3};
+    mulPoint4x4(mz, neg, out);
+    for (int i = 0; i < 4; ++i) EXPECT_FALSE(std::signbit(out[i])) << i;
+    float mz3[12] = {};
+    mz3[9] = mz3[10] = mz3[11] = -0.0f;
+    mulPoint3x4(mz3, neg, o3);
+    for (int i = 0; i < 3; ++i) EXPECT_FALSE(std::signbit(o3[i])) << i;
+
     // Through the whole vertex path with CLE = 1: X/Y stay valid, Z clamps (16384·inf + 32768).
     Rig r;
     r.set(GE_CMD_CLE, 1);
