@@ -99,6 +99,14 @@ struct AccuracyProfile {
     // (SplineCommon.cpp: the tessellated colour converted by Vec4<float>::ToRGBA, Math3D.h,
     // cvtps2dq; geometry/spline.cpp).
     bool pspPatchColourRoundUp = false;
+    // Gouraud lines take each pixel's colour at the pixel centre's place along the line — the
+    // fraction (centre − start) / (end − start) of the longer axis, in sixteenths — rounded down
+    // (pspautotests primitives/bezier and spline, the line patches: a vertical line from y 10 to
+    // 22.42 with green 0 → 148 reads 5, 29, 41, 53, 65 on rows 10, 12, 13, 14, 15, which is
+    // ⌊148·(row + 0.5 − 10) / 12.42⌋). PPSSPP steps the colour once per whole step of its walk,
+    // (c0·(n − i) + c1·i) / n (Rasterizer.cpp DrawLine; geometry/raster.cpp rasterLine): 0, 24,
+    // 37, 49, 61 there.
+    bool pspLineColourAtCentre = false;
 
     static constexpr AccuracyProfile psp() {
         AccuracyProfile a;
@@ -108,6 +116,7 @@ struct AccuracyProfile {
         a.pspTriangleSampleCentre = true;
         a.pspColourGradients = true;
         a.pspPatchColourRoundUp = true;
+        a.pspLineColourAtCentre = true;
         return a;
     }
     static constexpr AccuracyProfile ppsspp() {
@@ -155,6 +164,7 @@ inline constexpr AccuracySwitch kAccuracySwitches[] = {
     {"pspTriangleSampleCentre", &AccuracyProfile::pspTriangleSampleCentre},
     {"pspColourGradients", &AccuracyProfile::pspColourGradients},
     {"pspPatchColourRoundUp", &AccuracyProfile::pspPatchColourRoundUp},
+    {"pspLineColourAtCentre", &AccuracyProfile::pspLineColourAtCentre},
 };
 
 // Every member is a switch, and every switch is in the table.

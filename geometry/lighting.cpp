@@ -33,10 +33,6 @@ void addTerm(int acc[3], const int light[3], const int mat[3], int s) {
     for (int i = 0; i < 3; ++i) acc[i] += (light[i] * mat[i] * s) >> 19;
 }
 
-}  // namespace
-
-namespace {
-
 // rsqrtss: the approximation PPSSPP's x86 build normalises with (the host's own on x86).
 float approxRsqrt(float x) {
 #if defined(__SSE__) || defined(_M_X64)
@@ -61,8 +57,8 @@ float spotByDivision(float dir[3]) {
     const float len = floatLength(dir);
     if (len == 0.0f || std::isinf(len)) {
         // A zero vector, or one with an infinite component, has a NaN component after the
-        // division; an overflowing finite one divides to zeros (cosine 0 as well); one whose squares underflow
-        // to a zero length is taken as zero (not measured).
+        // division; an overflowing finite one divides to zeros (cosine 0 as well); one whose
+        // squares underflow to a zero length is taken as zero (not measured).
         return 0.0f;
     }
     for (int i = 0; i < 3; ++i) dir[i] /= len;

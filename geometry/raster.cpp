@@ -644,6 +644,10 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
     // flat lines and gives Gouraud lines with different end colours the end colour; no frametest
     // tells the two apart, so the manual's rule stands.)
     const bool interpolateColor = rp.gouraud;
+    // The longer axis and the line's extent along it, from v0 (RasterParams::lineColourAtCentre).
+    const s64 adx = s64(v1.x) - v0.x, ady = s64(v1.y) - v0.y;
+    const bool xMajor = (adx < 0 ? -adx : adx) >= (ady < 0 ? -ady : ady);
+    const s64 major0 = xMajor ? v0.x : v0.y, majorLen = xMajor ? adx : ady;
     const float q0 = 1.0f / v0.w, q1 = 1.0f / v1.w;
     // Texture coordinates in single precision, as the reference: perspective-correct with weight
     // p = a / steps on v0.
@@ -672,7 +676,17 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
         f.x = px;
         f.y = py;
         f.z = u16(int(z));
-        if (interpolateColor) {
+        if (interpolateColor && rp.lineColourAtCentre) {
+            // The pixel centre's place along the longer axis, clamped to the line's ends:
+            // c0 + ⌊(c1 − c0)·num / den⌋ (AccuracyProfile::pspLineColourAtCentre).
+            const s64 centre = 16 * s64(xMajor ? px : py) + 8;
+            s64 num = centre - major0, den = majorLen;
+            if (den < 0) num = -num, den = -den;  // a line running backwards
+            num = std::clamp<s64>(num, 0, den);
+            auto at = [&](int c0, int c1) { return u8(c0 + floorDiv(s64(c1 - c0) * num, den)); };
+            for (int c = 0; c < 4; ++c) f.color[c] = at(v0.color[c], v1.color[c]);
+            for (int c = 0; c < 3; ++c) f.secondary[c] = at(v0.secondary[c], v1.secondary[c]);
+        } else if (interpolateColor) {
             for (int c = 0; c < 4; ++c) f.color[c] = u8((v0.color[c] * a + v1.color[c] * b) / steps);
             for (int c = 0; c < 3; ++c) f.secondary[c] = u8((v0.secondary[c] * a + v1.secondary[c] * b) / steps);
         } else {

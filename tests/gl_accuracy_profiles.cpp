@@ -238,6 +238,40 @@ TEST(AccuracyProfiles, PatchColourRoundUp) {
         });
 }
 
+// pspLineColourAtCentre: a through-mode Gouraud line from (170, 10) down to (170, 22 + 7/16),
+// green 0 to 148 (a vertical line of pspautotests primitives/bezier's line patch): 12 steps. The
+// PSP's row r reads ⌊148·(16r + 8 − 160) / 199⌋: 5, 29, 41 on rows 10, 12, 13; PPSSPP's walk
+// 148·(r − 10) / 12: 0, 24, 37.
+void gouraudLineScene(ListBuilder& b) {
+    b.drawBuffer(GE_FORMAT_8888, 0, 512);
+    b.scissor(0, 0, 480, 272);
+    b.region(0, 0, 480, 272);
+    b.clear(CLEAR_COLOR, 0x00000000, 0);
+    b.shadeModel(true);
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_F | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].x = v[1].x = 170.0f, v[0].y = 10.0f, v[1].y = 22.4375f;
+    v[0].color = 0xFF0000FFu, v[1].color = 0xFF0094FFu;  // red 255; green 0 → 148
+    b.drawArrayData(GE_PRIM_LINES, vtype, 2, nullptr, packVertices(vtype, v, 2).data());
+}
+
+TEST(AccuracyProfiles, LineColourAtCentre) {
+    auto green = [](const std::vector<u8>& vram, int y) { return (rgbAt(vram, 170, y, 512) >> 8) & 0xFFu; };
+    checkBothProfiles(
+        gouraudLineScene,
+        [&](const std::vector<u8>& vram) {
+            EXPECT_EQ(green(vram, 10), 5u);
+            EXPECT_EQ(green(vram, 12), 29u);
+            EXPECT_EQ(green(vram, 13), 41u);
+        },
+        [&](const std::vector<u8>& vram) {
+            EXPECT_EQ(green(vram, 10), 0u);
+            EXPECT_EQ(green(vram, 12), 24u);
+            EXPECT_EQ(green(vram, 13), 37u);
+        },
+        {Where::Soft, Where::GlExact});
+}
+
 // A transform-mode quad over clip (−0.5..0.5)² (pixels 120..359 × 68..203), normal (0, 0, 1), lit
 // by light 0 of `type` at `pos` with only the colours given (black elsewhere: no global ambient,
 // emissive or other light), white materials, MK = 1.
@@ -245,11 +279,7 @@ void litQuadScene(ListBuilder& b, u32 type, u32 comps, const float pos[3], u32 l
                   const float spotDir[3]) {
     testscene::screenFrame(b);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
-    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    b.setMatrix(GeMatrix::World, id);
-    b.setMatrix(GeMatrix::View, id);
-    b.setMatrix(GeMatrix::Proj, id);
-    b.enable(GE_CMD_BCE, false);
+    testscene::identityTransform(b);
     b.enable(GE_CMD_LTE, true);
     b.enable(GE_CMD_LE0, true);
     b.ambient(0xFF000000);
@@ -368,11 +398,7 @@ TEST(AccuracyProfiles, ClutSkipsAlphaTest) {
 void patchScene(ListBuilder& b, bool spline) {
     testscene::screenFrame(b);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
-    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    b.setMatrix(GeMatrix::World, id);
-    b.setMatrix(GeMatrix::View, id);
-    b.setMatrix(GeMatrix::Proj, id);
-    b.enable(GE_CMD_BCE, false);
+    testscene::identityTransform(b);
     b.patchDivide(4, 4);
     b.patchPrim(0);
     constexpr u32 vtype = vt::COL_8888 | vt::POS_F;

@@ -26,11 +26,7 @@ inline void spritePositionScene(ListBuilder& b) {
     b.cmdf(GE_CMD_SZ, -32767.5f);  // depth/precision's viewport Z (sceGuDepthRange's is −32768, 32767)
     b.cmdf(GE_CMD_TZ, 32767.5f);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0x1234);
-    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    b.setMatrix(GeMatrix::World, id);
-    b.setMatrix(GeMatrix::View, id);
-    b.setMatrix(GeMatrix::Proj, id);
-    b.enable(GE_CMD_BCE, false);
+    identityTransform(b);
     b.enable(GE_CMD_TME, true);
     b.texMode(GE_TFMT_8888, 0, false);
     b.texFunc(3, true);  // REPLACE, RGBA (manual §13.13)

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "authoring/list_builder.h"
+#include "tests/screen_frame.h"
 
 namespace ge::testscene {
 
@@ -46,11 +47,7 @@ inline void wideTextureScene(ListBuilder& b) {
     b.viewport(2048, 2048, 64, 64);
     b.depthRange(65535, 0);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
-    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    b.setMatrix(GeMatrix::World, id);
-    b.setMatrix(GeMatrix::View, id);
-    b.setMatrix(GeMatrix::Proj, id);
-    b.enable(GE_CMD_BCE, false);
+    identityTransform(b);
     b.texMode(GE_TFMT_8888, 0, false);
     b.texFunc(3, true);  // REPLACE, RGBA
     b.texFilter(0, 0);   // nearest
