@@ -99,14 +99,16 @@ struct AccuracyProfile {
     // (SplineCommon.cpp: the tessellated colour converted by Vec4<float>::ToRGBA, Math3D.h,
     // cvtps2dq; geometry/spline.cpp).
     bool pspPatchColourRoundUp = false;
-    // Gouraud lines take each pixel's colour at the pixel centre's place along the line — the
-    // fraction (centre − start) / (end − start) of the longer axis, in sixteenths — rounded down
-    // (pspautotests primitives/bezier and spline, the line patches: a vertical line from y 10 to
-    // 22.42 with green 0 → 148 reads 5, 29, 41, 53, 65 on rows 10, 12, 13, 14, 15, which is
-    // ⌊148·(row + 0.5 − 10) / 12.42⌋). PPSSPP steps the colour once per whole step of its walk,
-    // (c0·(n − i) + c1·i) / n (Rasterizer.cpp DrawLine; geometry/raster.cpp rasterLine): 0, 24,
-    // 37, 49, 61 there.
-    bool pspLineColourAtCentre = false;
+    // Lines are sampled at pixel centres along their longer axis: the pixels whose centres lie in
+    // [start, end) are drawn, the other coordinate taken at that centre, and each pixel's Gouraud
+    // colour is the colour at the centre's place along the line, rounded down (geometry/raster.cpp
+    // rasterLineAtCentres). pspautotests primitives/lines and linestrip: a line from x 9.375 to
+    // 11.25 draws pixels 9 and 10 (centres 9.5, 10.5); bezier and spline, the line patches: a
+    // vertical line from y 10 to 22.42, green 0 → 148, reads 5, 29, 41, 53, 65 on rows 10, 12–15,
+    // ⌊148·(row + 0.5 − 10) / 12.42⌋. PPSSPP walks ⌊max(|dx|, |dy|) / 16⌋ whole steps from the
+    // start vertex and steps the colour once per step, (c0·(n − i) + c1·i) / n (Rasterizer.cpp
+    // DrawLine): pixel 9 only, and 0, 24, 37, 49, 61.
+    bool pspLineCentres = false;
 
     static constexpr AccuracyProfile psp() {
         AccuracyProfile a;
@@ -116,7 +118,7 @@ struct AccuracyProfile {
         a.pspTriangleSampleCentre = true;
         a.pspColourGradients = true;
         a.pspPatchColourRoundUp = true;
-        a.pspLineColourAtCentre = true;
+        a.pspLineCentres = true;
         return a;
     }
     static constexpr AccuracyProfile ppsspp() {
@@ -164,7 +166,7 @@ inline constexpr AccuracySwitch kAccuracySwitches[] = {
     {"pspTriangleSampleCentre", &AccuracyProfile::pspTriangleSampleCentre},
     {"pspColourGradients", &AccuracyProfile::pspColourGradients},
     {"pspPatchColourRoundUp", &AccuracyProfile::pspPatchColourRoundUp},
-    {"pspLineColourAtCentre", &AccuracyProfile::pspLineColourAtCentre},
+    {"pspLineCentres", &AccuracyProfile::pspLineCentres},
 };
 
 // Every member is a switch, and every switch is in the table.

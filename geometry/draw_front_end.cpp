@@ -29,7 +29,7 @@ RasterParams rasterParamsFor(const GeState& st, bool through, bool rectangles, c
     rp.zeroAreaTriangles = acc.zeroAreaTriangles;
     rp.sampleCentre = acc.pspTriangleSampleCentre;
     rp.colourGradients = acc.pspColourGradients;
-    rp.lineColourAtCentre = acc.pspLineColourAtCentre;
+    rp.lineCentres = acc.pspLineCentres;
     rp.texW0 = float(texCoordWidth(st, 0));  // unclamped 2^n (texture_size.h)
     rp.texH0 = float(texCoordHeight(st, 0));
     return rp;

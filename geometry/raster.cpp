@@ -619,8 +619,80 @@ void rasterRectangle(const RasterParams& rp, const ScreenVertex& v0, const Scree
     }
 }
 
+namespace {
+
+// A line as a PSP draws it (RasterParams::lineCentres, AccuracyProfile::pspLineCentres): along the
+// longer axis every pixel whose centre lies in [start, end) — (end, start] for a line running
+// backwards —, the other coordinate taken at that centre (exactly, in sixteenths) and rounded
+// down to its pixel. Each pixel's attributes are those at the centre's place t = num / len along
+// the line: Gouraud colours c0 + ⌊(c1 − c0)·num / len⌋ (a flat line takes the end vertex's),
+// depth, fog and clip W linear in t, texture coordinates linear in t in through mode and
+// perspective-correct otherwise, the level of detail from the next centre's.
+void rasterLineAtCentres(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
+                         FragmentSink& sink) {
+    const s64 dx = s64(v1.x) - v0.x, dy = s64(v1.y) - v0.y;
+    const bool xMajor = (dx < 0 ? -dx : dx) >= (dy < 0 ? -dy : dy);
+    const s64 s0 = xMajor ? v0.x : v0.y, m0 = xMajor ? v0.y : v0.x;
+    const s64 len = xMajor ? dx : dy, mlen = xMajor ? dy : dx;
+    if (len == 0) return;  // zero-length lines draw nothing (ge-rules.md §8.11)
+    const s64 dir = len > 0 ? 1 : -1, alen = len * dir;
+    const float q0 = 1.0f / v0.w, q1 = 1.0f / v1.w;
+    auto texAt = [&](double t, float& s, float& tt) {
+        if (rp.through) {
+            s = v0.s + (v1.s - v0.s) * float(t);
+            tt = v0.t + (v1.t - v0.t) * float(t);
+            return;
+        }
+        const float wq0 = float(1.0 - t) * q0, wq1 = float(t) * q1;
+        const float qr = 1.0f / (v0.q * wq0 + v1.q * wq1);
+        s = (v0.s * wq0 + v1.s * wq1) * qr;
+        tt = (v0.t * wq0 + v1.t * wq1) * qr;
+    };
+    for (s64 p = dir > 0 ? ceilDiv(s0 - 8, 16) : floorDiv(s0 - 8, 16);; p += dir) {
+        const s64 num = (16 * p + 8 - s0) * dir;  // 0 ≤ num < alen inside the line
+        if (num >= alen) break;
+        const s64 minor = floorDiv(m0 + floorDiv(mlen * num, alen), 16);
+        const s64 px = xMajor ? p : minor, py = xMajor ? minor : p;
+        if (px < rp.clipX1 || px > rp.clipX2 || py < rp.clipY1 || py > rp.clipY2 || !band.owns(int(py))) continue;
+        const double t = double(num) / double(alen);
+        Fragment& f = sink.next();
+        f.x = int(px);
+        f.y = int(py);
+        f.z = u16(int(double(v0.z) + double(s64(v1.z) - v0.z) * t));
+        if (rp.gouraud) {
+            auto at = [&](int c0, int c1) { return u8(c0 + floorDiv(s64(c1 - c0) * num, alen)); };
+            for (int c = 0; c < 4; ++c) f.color[c] = at(v0.color[c], v1.color[c]);
+            for (int c = 0; c < 3; ++c) f.secondary[c] = at(v0.secondary[c], v1.secondary[c]);
+        } else {
+            std::memcpy(f.color, v1.color, 4);
+            std::memcpy(f.secondary, v1.secondary, 3);
+        }
+        f.fog = rp.fog ? fogToByte(v0.fog + (v1.fog - v0.fog) * float(t)) : 255;
+        f.s = f.t = 0.0f;
+        f.lod = 0.0f;
+        if (rp.textured) {
+            float s, tt;
+            texAt(t, s, tt);
+            f.s = finiteOr0(s);
+            f.t = finiteOr0(tt);
+            if (rp.needLod) {
+                float sn, tn;
+                texAt(double(num + 16) / double(alen), sn, tn);
+                f.lod = lodFromSteps(rp, double(sn) - f.s, double(tn) - f.t);
+            }
+        }
+        f.w = rp.needW ? finiteOr0(v0.w + (v1.w - v0.w) * float(t)) : 1.0f;
+    }
+}
+
+}  // namespace
+
 void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVertex& v1, const Band& band,
                 FragmentSink& sink) {
+    if (rp.lineCentres) {
+        rasterLineAtCentres(rp, v0, v1, band, sink);
+        return;
+    }
     // The reference renderer's line walk (PPSSPP GPU/Software DrawLine): max(|dx|, |dy|) / 16
     // steps of (dx, dy) / steps accumulated in double precision from the start vertex (one
     // subpixel back along an axis the line runs backwards on), each step drawing the pixel that
@@ -644,10 +716,6 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
     // flat lines and gives Gouraud lines with different end colours the end colour; no frametest
     // tells the two apart, so the manual's rule stands.)
     const bool interpolateColor = rp.gouraud;
-    // The longer axis and the line's extent along it, from v0 (RasterParams::lineColourAtCentre).
-    const s64 adx = s64(v1.x) - v0.x, ady = s64(v1.y) - v0.y;
-    const bool xMajor = (adx < 0 ? -adx : adx) >= (ady < 0 ? -ady : ady);
-    const s64 major0 = xMajor ? v0.x : v0.y, majorLen = xMajor ? adx : ady;
     const float q0 = 1.0f / v0.w, q1 = 1.0f / v1.w;
     // Texture coordinates in single precision, as the reference: perspective-correct with weight
     // p = a / steps on v0.
@@ -676,17 +744,7 @@ void rasterLine(const RasterParams& rp, const ScreenVertex& v0, const ScreenVert
         f.x = px;
         f.y = py;
         f.z = u16(int(z));
-        if (interpolateColor && rp.lineColourAtCentre) {
-            // The pixel centre's place along the longer axis, clamped to the line's ends:
-            // c0 + ⌊(c1 − c0)·num / den⌋ (AccuracyProfile::pspLineColourAtCentre).
-            const s64 centre = 16 * s64(xMajor ? px : py) + 8;
-            s64 num = centre - major0, den = majorLen;
-            if (den < 0) num = -num, den = -den;  // a line running backwards
-            num = std::clamp<s64>(num, 0, den);
-            auto at = [&](int c0, int c1) { return u8(c0 + floorDiv(s64(c1 - c0) * num, den)); };
-            for (int c = 0; c < 4; ++c) f.color[c] = at(v0.color[c], v1.color[c]);
-            for (int c = 0; c < 3; ++c) f.secondary[c] = at(v0.secondary[c], v1.secondary[c]);
-        } else if (interpolateColor) {
+        if (interpolateColor) {
             for (int c = 0; c < 4; ++c) f.color[c] = u8((v0.color[c] * a + v1.color[c] * b) / steps);
             for (int c = 0; c < 3; ++c) f.secondary[c] = u8((v0.secondary[c] * a + v1.secondary[c] * b) / steps);
         } else {

@@ -81,9 +81,9 @@ struct RasterParams {
     // (AccuracyProfile::pspColourGradients; colourGradientReference); else interpolated in float
     // and rounded to nearest, as PPSSPP does.
     bool colourGradients = false;
-    // Gouraud lines take the colour at each pixel centre's place along the line, rounded down
-    // (AccuracyProfile::pspLineColourAtCentre; rasterLine); else per whole step, as PPSSPP.
-    bool lineColourAtCentre = false;
+    // Lines sampled at pixel centres along their longer axis (AccuracyProfile::pspLineCentres;
+    // rasterLine); else PPSSPP's walk of whole steps.
+    bool lineCentres = false;
     float texW0 = 1, texH0 = 1;  // level-0 coordinate size 2^n, unclamped (level of detail; texture_size.h)
 };
 

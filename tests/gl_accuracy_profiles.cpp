@@ -238,36 +238,45 @@ TEST(AccuracyProfiles, PatchColourRoundUp) {
         });
 }
 
-// pspLineColourAtCentre: a through-mode Gouraud line from (170, 10) down to (170, 22 + 7/16),
-// green 0 to 148 (a vertical line of pspautotests primitives/bezier's line patch): 12 steps. The
-// PSP's row r reads ⌊148·(16r + 8 − 160) / 199⌋: 5, 29, 41 on rows 10, 12, 13; PPSSPP's walk
-// 148·(r − 10) / 12: 0, 24, 37.
-void gouraudLineScene(ListBuilder& b) {
+// pspLineCentres: two through-mode lines. A Gouraud line from (170, 10) down to (170, 22 + 7/16),
+// green 0 to 148 (a vertical line of pspautotests primitives/bezier's line patch): the PSP's
+// row r reads ⌊148·(16r + 8 − 160) / 199⌋: 5, 29, 41 on rows 10, 12, 13; PPSSPP's walk of 12
+// whole steps 148·(r − 10) / 12: 0, 24, 37. A white line from x 9.375 to 11.25 on row 30
+// (pspautotests primitives/lines): the PSP draws the pixels whose centres lie on it, 9 and 10;
+// PPSSPP ⌊30 / 16⌋ = 1 step, pixel 9.
+void lineScene(ListBuilder& b) {
     b.drawBuffer(GE_FORMAT_8888, 0, 512);
     b.scissor(0, 0, 480, 272);
     b.region(0, 0, 480, 272);
     b.clear(CLEAR_COLOR, 0x00000000, 0);
     b.shadeModel(true);
     constexpr u32 vtype = vt::COL_8888 | vt::POS_F | vt::THROUGH;
-    BuildVertex v[2];
+    BuildVertex v[4];
     v[0].x = v[1].x = 170.0f, v[0].y = 10.0f, v[1].y = 22.4375f;
     v[0].color = 0xFF0000FFu, v[1].color = 0xFF0094FFu;  // red 255; green 0 → 148
-    b.drawArrayData(GE_PRIM_LINES, vtype, 2, nullptr, packVertices(vtype, v, 2).data());
+    v[2].x = 9.375f, v[3].x = 11.25f, v[2].y = v[3].y = 30.0f;
+    v[2].color = v[3].color = 0xFFFFFFFFu;
+    b.drawArrayData(GE_PRIM_LINES, vtype, 4, nullptr, packVertices(vtype, v, 4).data());
 }
 
-TEST(AccuracyProfiles, LineColourAtCentre) {
+TEST(AccuracyProfiles, LineCentres) {
     auto green = [](const std::vector<u8>& vram, int y) { return (rgbAt(vram, 170, y, 512) >> 8) & 0xFFu; };
     checkBothProfiles(
-        gouraudLineScene,
+        lineScene,
         [&](const std::vector<u8>& vram) {
             EXPECT_EQ(green(vram, 10), 5u);
             EXPECT_EQ(green(vram, 12), 29u);
             EXPECT_EQ(green(vram, 13), 41u);
+            EXPECT_EQ(rgbAt(vram, 9, 30, 512), 0xFFFFFFu);
+            EXPECT_EQ(rgbAt(vram, 10, 30, 512), 0xFFFFFFu);
+            EXPECT_EQ(rgbAt(vram, 11, 30, 512), 0u);
         },
         [&](const std::vector<u8>& vram) {
             EXPECT_EQ(green(vram, 10), 0u);
             EXPECT_EQ(green(vram, 12), 24u);
             EXPECT_EQ(green(vram, 13), 37u);
+            EXPECT_EQ(rgbAt(vram, 9, 30, 512), 0xFFFFFFu);
+            EXPECT_EQ(rgbAt(vram, 10, 30, 512), 0u);
         },
         {Where::Soft, Where::GlExact});
 }
