@@ -162,15 +162,20 @@ TEST(AccuracyProfiles, TriangleSampleCentre) {
 // where the exact values at the centres are 253.4, 250.2, 247.0, 243.8. PPSSPP samples 7/16 down
 // the pixel and rounds the float sum to nearest: 254 on row 10 (253.6), 247 on row 12 (247.2).
 // GL hw interpolates on the GPU and is not held to either rule.
-constexpr u8 kFanGreen[40] = {0xfd, 0xfa, 0xf6, 0xf3, 0xf0, 0xed, 0xea, 0xe6, 0xe3, 0xe0, 0xdd, 0xda, 0xd6, 0xd3,
-                              0xd0, 0xcd, 0xca, 0xc6, 0xc3, 0xc0, 0xbd, 0xba, 0xb6, 0xb3, 0xb0, 0xad, 0xaa, 0xa6,
-                              0xa3, 0xa0, 0x9d, 0x9a, 0x96, 0x93, 0x90, 0x8d, 0x8a, 0x86, 0x83, 0x80};
-void gouraudFanScene(ListBuilder& b) {
+// The 480x272 screen of an 8888, 512-stride frame cleared to black, Gouraud shading on.
+void gouraudScreen(ListBuilder& b) {
     b.drawBuffer(GE_FORMAT_8888, 0, 512);
     b.scissor(0, 0, 480, 272);
     b.region(0, 0, 480, 272);
     b.clear(CLEAR_COLOR, 0x00000000, 0);
     b.shadeModel(true);
+}
+
+constexpr u8 kFanGreen[40] = {0xfd, 0xfa, 0xf6, 0xf3, 0xf0, 0xed, 0xea, 0xe6, 0xe3, 0xe0, 0xdd, 0xda, 0xd6, 0xd3,
+                              0xd0, 0xcd, 0xca, 0xc6, 0xc3, 0xc0, 0xbd, 0xba, 0xb6, 0xb3, 0xb0, 0xad, 0xaa, 0xa6,
+                              0xa3, 0xa0, 0x9d, 0x9a, 0x96, 0x93, 0x90, 0x8d, 0x8a, 0x86, 0x83, 0x80};
+void gouraudFanScene(ListBuilder& b) {
+    gouraudScreen(b);
     constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
     BuildVertex v[4];
     const float xy[4][2] = {{260, 10}, {300, 10}, {300, 50}, {260, 50}};
@@ -245,11 +250,7 @@ TEST(AccuracyProfiles, PatchColourRoundUp) {
 // (pspautotests primitives/lines): the PSP draws the pixels whose centres lie on it, 9 and 10;
 // PPSSPP ⌊30 / 16⌋ = 1 step, pixel 9.
 void lineScene(ListBuilder& b) {
-    b.drawBuffer(GE_FORMAT_8888, 0, 512);
-    b.scissor(0, 0, 480, 272);
-    b.region(0, 0, 480, 272);
-    b.clear(CLEAR_COLOR, 0x00000000, 0);
-    b.shadeModel(true);
+    gouraudScreen(b);
     constexpr u32 vtype = vt::COL_8888 | vt::POS_F | vt::THROUGH;
     BuildVertex v[4];
     v[0].x = v[1].x = 170.0f, v[0].y = 10.0f, v[1].y = 22.4375f;
