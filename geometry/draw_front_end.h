@@ -101,6 +101,11 @@ public:
     // keeps what a PRIM type 7 continuation after it needs — its still-open vertices,
     // transformed, and the strip parity — as prim()'s walk would have left them.
     void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p);
+    // A patch drawn elsewhere: ends any open PRIM, as patch() does.
+    void endOpenPrim() {
+        pending_.clear();
+        stripOdd_ = false;
+    }
 
     // Of the draw being assembled (valid in sink calls and after the call until the next draw).
     const RasterParams& rasterParams() const { return rp_; }

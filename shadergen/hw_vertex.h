@@ -94,6 +94,10 @@
 #include "hle/types.h"
 #include "shadergen/shader_keys.h"
 
+namespace ge::geo {
+struct MatrixFold;
+}
+
 namespace ge::shadergen {
 
 // Zero-initialised POD compared and hashed byte-wise (keyEqual / KeyHash), canonical after
@@ -151,6 +155,9 @@ std::string describe(const HwVsKey& k);
 // The key of a draw (`through` from VTYPE bit 23). `texture`: texturing on (TME and not clear
 // mode); `fog`: FGE (as the draw front end reads it: ignored in through mode). Canonicalised.
 HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog);
+// The same for vertices of format `vtype` rather than the state's VTYPE (the GPU path's
+// tessellated patches: float vertices made on the CPU).
+HwVsKey hwVsKeyFromState(const GeState& st, u32 vtype, bool texture, bool fog);
 
 // Bytes per vertex (one vertex times its morph copies, ge-rules.md §5.2) of a key.
 u32 hwVsStride(const HwVsKey& k);
@@ -205,6 +212,10 @@ inline constexpr int kHwVsUniformVec4 = int(sizeof(HwVsUniforms) / 16);
 // cosine forced for an LD that cannot be normalised); sseVectorArithmetic's approximations are
 // not reproduced on the GPU.
 void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u, const geo::AccuracyProfile& acc = {});
+// The same for vertices of format `vtype`; `fold` (may be null) keeps the folded matrices between
+// draws whose matrices are unchanged (geo::MatrixFold).
+void hwVsUniformsFromState(const GeState& st, u32 vtype, HwVsUniforms& u, const geo::AccuracyProfile& acc,
+                           geo::MatrixFold* fold);
 
 // GLSL for a key. False + err only for keys the generator cannot express (none today).
 bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err = nullptr);

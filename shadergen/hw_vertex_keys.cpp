@@ -159,14 +159,19 @@ std::string describe(const HwVsKey& k) {
 }
 
 HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog) {
+    return hwVsKeyFromState(st, st.op(GE_CMD_VTYPE), texture, fog);
+}
+
+HwVsKey hwVsKeyFromState(const GeState& st, u32 vtype, bool texture, bool fog) {
     HwVsKey k;
-    k.tc = u8(st.VTYPE_tc());
-    k.col = u8(st.VTYPE_col());
-    k.nrm = u8(st.VTYPE_nrm());
-    k.pos = u8(st.VTYPE_pos());
-    k.weights = u8(st.VTYPE_weight());
-    k.weightCount = u8(st.VTYPE_wcount() + 1);
-    k.morphCount = u8(st.VTYPE_mcount() + 1);
+    // CMD_VTYPE's fields (ge-rules.md §5.1).
+    k.tc = u8(vtype & 3);
+    k.col = u8((vtype >> 2) & 7);
+    k.nrm = u8((vtype >> 5) & 3);
+    k.pos = u8((vtype >> 7) & 3);
+    k.weights = u8((vtype >> 9) & 3);
+    k.weightCount = u8(((vtype >> 14) & 7) + 1);
+    k.morphCount = u8(((vtype >> 18) & 7) + 1);
     k.lighting = st.LTE_on();
     for (int n = 0; n < 4; ++n) {
         if (!st.LE_on(n)) continue;
@@ -186,19 +191,24 @@ HwVsKey hwVsKeyFromState(const GeState& st, bool texture, bool fog) {
     k.clipEnable = st.CLE_on();
     // Flat in clear mode too, as geo::rasterParamsFor (the fragment key must agree).
     k.flatShade = !(st.SHADE_gouraud() && !st.isClearMode());
-    k.through = st.isThrough();
+    k.through = (vtype >> 23) & 1;
     canonicalize(k);
     return k;
 }
 
 void hwVsUniformsFromState(const GeState& st, HwVsUniforms& u, const geo::AccuracyProfile& acc) {
+    hwVsUniformsFromState(st, st.op(GE_CMD_VTYPE), u, acc, nullptr);
+}
+
+void hwVsUniformsFromState(const GeState& st, u32 vtypeIn, HwVsUniforms& u, const geo::AccuracyProfile& acc,
+                           geo::MatrixFold* fold) {
     std::memset(static_cast<void*>(&u), 0, sizeof u);
     // The transform-mode state of this VTYPE, computed by the code the CPU path runs.
-    const u32 vtype = st.op(GE_CMD_VTYPE) & ~(1u << 23);
+    const u32 vtype = vtypeIn & ~(1u << 23);
     const bool hasColor = ((vtype >> 2) & 7) >= 4, hasNormal = ((vtype >> 5) & 3) != 0;
     geo::AccuracyProfile lightingOnly;  // the GPU normalises exactly (see hw_vertex.h)
     lightingOnly.spotDirectionDivide = acc.spotDirectionDivide;
-    const geo::TransformState ts = geo::makeTransformState(st, vtype, hasColor, hasNormal, nullptr, lightingOnly);
+    const geo::TransformState ts = geo::makeTransformState(st, vtype, hasColor, hasNormal, fold, lightingOnly);
     std::memcpy(u.worldViewProj, ts.worldViewProj, sizeof u.worldViewProj);
     std::memcpy(u.viewProj, ts.viewProj, sizeof u.viewProj);
     std::memcpy(u.world, ts.world, sizeof u.world);

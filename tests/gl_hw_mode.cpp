@@ -506,6 +506,56 @@ TEST(GlHwMode, ContinuationAfterAGpuDrawnStrip) {
     EXPECT_EQ(differ, 0u);
 }
 
+// A Bezier patch with the vertex work on the GPU: the CPU tessellates (geo::tessellatePatch), the
+// vertex shader transforms the generated float vertices (GpuVertexPath::preparePatch), as
+// PPSSPP's GL backend does with its CPU tessellation. The pixels are the software model's, colours
+// within one step (GL interpolates in float). Drawn as lines (PPM 1) the patch stays on the CPU.
+TEST(GlHwMode, GpuVerticesDrawATessellatedPatch) {
+    auto build = [](ListBuilder& b, u32 ppm) {
+        testscene::nearClipFrame(b, false);
+        b.patchDivide(6, 5);
+        b.patchPrim(ppm);
+        constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+        BuildVertex v[16];
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                BuildVertex& c = v[j * 4 + i];
+                c.x = -0.8f + 0.5f * float(i) + 0.05f * float(j);
+                c.y = -0.6f + 0.4f * float(j) + (i == 1 || i == 2 ? 0.1f : 0.0f);
+                c.z = 1.0f;
+                c.color = 0xFF000000u | u32(40 + 60 * i) | u32(30 + 70 * j) << 8 | u32(200 - 50 * i) << 16;
+            }
+        const auto data = packVertices(vtype, v, 16);
+        b.drawBezier(vtype, 4, 4, 0, b.place(data.data(), u32(data.size()), 4));
+    };
+    gl::GlOptions o = hwOptions(1);
+    o.vertices = gl::GlOptions::Vertices::Gpu;
+    for (u32 ppm : {0u, 1u}) {
+        SCOPED_TRACE(ppm ? "lines" : "triangles");
+        Memory mem;
+        std::string err;
+        auto r = gl::createGlRenderer(mem, o, err);
+        if (!r) GTEST_SKIP() << err;
+        auto scene = [&](ListBuilder& b) { build(b, ppm); };
+        const std::vector<u8> vram = runListVram(mem, *r, scene);
+        EXPECT_EQ(r->stats().gpuVertexDraws, ppm ? 0u : 1u);
+        std::vector<u8> soft;
+        renderVram(nullptr, scene, soft, err);
+        auto rgb = [](const std::vector<u8>& f, int x, int y) { return readLE32(&f[(size_t(y) * 512 + size_t(x)) * 4]) & 0xFFFFFF; };
+        size_t differ = 0, covered = 0;
+        for (int y = 0; y < 272; ++y)
+            for (int x = 0; x < 480; ++x) {
+                const u32 a = rgb(vram, x, y), b = rgb(soft, x, y);
+                covered += b != 0;
+                bool close = true;
+                for (int c = 0; c < 3; ++c) close &= std::abs(int((a >> (8 * c)) & 0xFF) - int((b >> (8 * c)) & 0xFF)) <= 1;
+                differ += !close || ((a == 0) != (b == 0));
+            }
+        EXPECT_GT(covered, ppm ? 500u : 20000u);
+        EXPECT_EQ(differ, 0u);
+    }
+}
+
 // Auto picks the CPU vertex path on a software rasteriser (llvmpipe here) and Gpu forces it.
 TEST(GlHwMode, VertexPathAutoIsCpuOnASoftwareRasteriser) {
     using namespace testscene;

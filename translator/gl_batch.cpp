@@ -106,29 +106,64 @@ bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& fl
 
 // Hardware mode: the PRIM draw with its vertex work in the vertex shader (gpu_vertex_path.h);
 // false when it stays on the CPU path.
+// What a draw on the GPU vertex path reads of the state (the front end's rules,
+// geometry/draw_front_end.cpp): texturing and culling never in clear mode, fog only in transform
+// mode; whether the fragment shader reads the destination through a texture.
+GlRendererImpl::GpuDrawState GlRendererImpl::gpuDrawState(const GeState& st) {
+    GpuDrawState g;
+    g.flags = shadergen::DrawFlags::fromState(st, opt_.accuracy);
+    // The colours reaching the fragments only matter to the reference's skipped alpha test;
+    // GpuVertexPath keeps the draws where that rule could fire on the CPU.
+    g.flags.vertexAlphaFull = true;
+    g.dstTexture = shadergen::keysFromState(st, g.flags, caps_, opt_.baseline).fs.dstRead == shadergen::DstRead::Texture;
+    g.texture = st.TME_on() && !st.isClearMode();
+    g.fog = st.FGE_on() && !st.isThrough();
+    g.cull = st.BCE_on() && !st.isClearMode();
+    return g;
+}
+
 bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     const GeState& st = *p.state;
-    shadergen::DrawFlags flags = shadergen::DrawFlags::fromState(st, opt_.accuracy);
-    // The colours reaching the fragments only matter to the reference's skipped alpha test;
-    // prepare() keeps the draws where that rule could fire on the CPU.
-    flags.vertexAlphaFull = true;
-    const bool dstTexture =
-        shadergen::keysFromState(st, flags, caps_, opt_.baseline).fs.dstRead == shadergen::DstRead::Texture;
-    // Texturing and culling never in clear mode, fog only in transform mode (the front end's
-    // rules, geometry/draw_front_end.cpp).
-    const bool texture = st.TME_on() && !st.isClearMode(), fog = st.FGE_on() && !st.isThrough();
-    const bool cull = st.BCE_on() && !st.isClearMode();
-    if (!gpu_.prepare(mem_, st, p, texture, fog, cull, st.CULL_ccw(), dstTexture, gpuDraw_)) return false;
+    const GpuDrawState g = gpuDrawState(st);
+    if (!gpu_.prepare(mem_, st, p, g.texture, g.fog, g.cull, st.CULL_ccw(), g.dstTexture, gpuDraw_)) return false;
     // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
     pipeline_.keepOpenVertices(mem_, st, p);
+    submitGpuDraw(st, g.flags);
+    return true;
+}
+
+// Tessellated on the CPU as the CPU path does (geo::tessellatePatch), transformed and lit on
+// the GPU. A patch the tessellator refuses goes to the CPU path, which reports it.
+bool GlRendererImpl::drawPatchOnGpu(const PatchPacket& p) {
+    const GeState& st = *p.state;
+    const GpuDrawState g = gpuDrawState(st);
+    if (!gpu_.acceptPatch(st, p, g.texture, g.dstTexture)) return false;
+    if (!geo::tessellatePatch(mem_, st, p, opt_.accuracy, tess_)) return false;
+    pipeline_.endOpenPrim();
+    if (!tess_.verts.empty()) {
+        // The tessellator generates normals when lighting needs them (geo::DrawFrontEnd::patch).
+        const VertexReader probe(mem_, st, p.vtype);
+        if (!gpu_.preparePatch(st, tess_, probe.hasColor(), probe.hasNormal() || st.LTE_on(), g.texture, g.fog,
+                               g.cull, st.CULL_ccw(), gpuDraw_))
+            return false;
+        submitGpuDraw(st, g.flags);
+    }
+    // A patch's tessellation can be far larger than any PRIM: not kept past it.
+    constexpr size_t kKeep = size_t(1) << 17;
+    if (tess_.verts.capacity() > kKeep) tess_ = geo::TessOutput{};
+    return true;
+}
+
+// Draws gpuDraw_ (prepared by GpuVertexPath) with the draw's fragment state.
+void GlRendererImpl::submitGpuDraw(const GeState& st, const shadergen::DrawFlags& flags) {
     DrawSetup s;
     if (!makeSetup(st, flags, s)) {
         flush();
-        return true;
+        return;
     }
     flush();  // what the CPU path has batched draws first
     Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
-    if (!ct) return true;
+    if (!ct) return;
     const bool depthOnColor = s.useDepth && s.depthStride &&
                               depthOverlapsColor(*ct, s.depthAddr, s.depthStride, s.scissor[3] + 1);
     Target* dt = s.useDepth && !depthOnColor ? fb_.depthTarget(s.depthAddr, s.depthStride, s.scissor[3] + 1)
@@ -139,7 +174,7 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
     if (!prog) {
         noteError(err);
-        return true;
+        return;
     }
     fb_.bindDraw(ct, dt);
     state_.apply(s, *prog, 0, 0);
@@ -151,7 +186,6 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
                              s.ff.colorMask[2] || s.ff.colorMask[3];
     if (colorWrites) ct->dirty.add(drawn);
     if (dt && s.ff.depthMask) dt->dirty.add(drawn);
-    return true;
 }
 
 bool GlRendererImpl::batchOverlaps(u32 begin, u32 end) const {

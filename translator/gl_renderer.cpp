@@ -138,6 +138,7 @@ void GlRendererImpl::drawPrim(const PrimPacket& p) {
 
 void GlRendererImpl::drawPatch(const PatchPacket& p) {
     ++stats_.draws;
+    if (gpuVertices_ && drawPatchOnGpu(p)) return;
     const GeState& st = *p.state;
     std::string err;
     startDraw(st, shadergen::DrawFlags::fromState(st, opt_.accuracy));

@@ -79,7 +79,14 @@ private:
     // gl_batch.cpp
     bool beginDraw(const GeState& st, const shadergen::DrawFlags& flags);
     bool makeSetup(const GeState& st, const shadergen::DrawFlags& flags, DrawSetup& s);
+    struct GpuDrawState {
+        shadergen::DrawFlags flags{};
+        bool dstTexture = false, texture = false, fog = false, cull = false;
+    };
+    GpuDrawState gpuDrawState(const GeState& st);
     bool drawPrimOnGpu(const PrimPacket& p);
+    bool drawPatchOnGpu(const PatchPacket& p);
+    void submitGpuDraw(const GeState& st, const shadergen::DrawFlags& flags);
     bool batchOverlaps(u32 begin, u32 end) const;
     void flush();
 
@@ -113,6 +120,7 @@ private:
     VertexPipeline pipeline_{opt_.accuracy};
     GpuVertexPath gpu_;
     GpuDraw gpuDraw_;
+    geo::TessOutput tess_;  // the GPU path's patch tessellation (reused)
     u64 batchGeneration_ = 0;
     Geometry geo_;
     Geometry drawGeo_;  // the current draw's geometry, before it joins the batch

@@ -78,11 +78,7 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
     if (!cull && ((mode == GL_TRIANGLE_STRIP && p.count >= 4 && p.count % 2 == 0) ||
                   (mode == GL_TRIANGLE_FAN && p.count == 4)))
         return reject(CpuReason::Quad);
-    // Whether the alpha test runs can hang on the colours that reach the fragments; when it
-    // cannot (the rule is off even with every alpha 255), the vertex shader's colours suffice.
-    if (acc_.clutSkipsAlphaTest && geo::referenceSkipsAlphaTest(st, texture, true)) return reject(CpuReason::AlphaRule);
-    if (dstTexture) return reject(CpuReason::DstTexture);
-    if (!ctx_.f().Uniform4uiv || !ctx_.f().DrawElements) return reject(CpuReason::PrimKind);
+    if (!passesCommonChecks(st, texture, dstTexture)) return false;
 
     VertexReader reader(mem, st, p.vtype);
     if (latchedAttributeUsed(st, reader, texture)) return reject(CpuReason::Latched);
@@ -135,7 +131,56 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
         }
         out.indexed = true;
     }
-    shadergen::hwVsUniformsFromState(st, out.uniforms, acc_);
+    shadergen::hwVsUniformsFromState(st, st.op(GE_CMD_VTYPE), out.uniforms, acc_, &fold_);
+    ++stats_.gpu;
+    return true;
+}
+
+bool GpuVertexPath::passesCommonChecks(const GeState& st, bool texture, bool dstTexture) {
+    // Whether the alpha test runs can hang on the colours that reach the fragments; when it
+    // cannot (the rule is off even with every alpha 255), the vertex shader's colours suffice.
+    if (acc_.clutSkipsAlphaTest && geo::referenceSkipsAlphaTest(st, texture, true)) return reject(CpuReason::AlphaRule);
+    if (dstTexture) return reject(CpuReason::DstTexture);
+    if (!ctx_.f().Uniform4uiv || !ctx_.f().DrawElements) return reject(CpuReason::PrimKind);
+    return true;
+}
+
+bool GpuVertexPath::acceptPatch(const GeState& st, const PatchPacket& p, bool texture, bool dstTexture) {
+    if (p.patchPrim != 0 || ((p.vtype >> 23) & 1)) return reject(CpuReason::PrimKind);
+    return passesCommonChecks(st, texture, dstTexture);
+}
+
+bool GpuVertexPath::preparePatch(const GeState& st, const geo::TessOutput& tess, bool hasColor, bool hasNormal,
+                                 bool texture, bool fog, bool cull, bool cullCcw, GpuDraw& out) {
+    const size_t n = tess.verts.size();
+    for (u32 i : tess.indices)
+        if (i >= n) return reject(CpuReason::Memory);
+    // VTYPE of the generated vertices (ge-rules.md §5.1): float UV (3), colour 8888 (7) or none,
+    // float normal (3) or none, float position (3); no weights (skinning was applied to the
+    // control points), no morphing.
+    const u32 vtype = 3u | (hasColor ? 7u : 0u) << 2 | (hasNormal ? 3u : 0u) << 5 | 3u << 7;
+    out.key = shadergen::hwVsKeyFromState(st, vtype, texture, fog);
+    out.key.primKind = 0;
+    out.key.sampleCentre = acc_.pspTriangleSampleCentre ? 1 : 0;
+    const VertexLayout l = VertexLayout::fromVtype(vtype);
+    out.mode = GL_TRIANGLES;
+    out.count = u32(tess.indices.size());
+    out.cull = cull;
+    out.cullCcw = cullCcw;
+    out.indexed = true;
+    out.indices.assign(tess.indices.begin(), tess.indices.end());
+    // The guest's own float vertices are little-endian, as the hosts ge2gl runs on: the shader
+    // reads these bytes as it reads the guest's.
+    out.bytes.assign(n * l.size, 0);
+    u8* b = out.bytes.data();
+    for (const DecodedVertex& v : tess.verts) {
+        std::memcpy(b + l.tcOff, v.uv, 8);
+        if (hasColor) std::memcpy(b + l.colOff, v.color, 4);
+        if (hasNormal) std::memcpy(b + l.nrmOff, v.nrm, 12);
+        std::memcpy(b + l.posOff, v.pos, 12);
+        b += l.size;
+    }
+    shadergen::hwVsUniformsFromState(st, vtype, out.uniforms, acc_, &fold_);
     ++stats_.gpu;
     return true;
 }

@@ -4,6 +4,9 @@
 // indices rebased to them; transform, skinning, morphing, lighting, texture mapping, fog, the
 // viewport, the 1/16-pixel snap, near clipping and the discard rules happen there.
 //
+// Bezier/spline patches drawn as triangles take the path too: tessellated on the CPU (the
+// geometry the CPU path draws), transformed and lit in the vertex shader.
+//
 // What stays on the CPU (VertexPipeline, shared geometry/ code), each counted by reason in
 // --stats because whole-primitive knowledge or the CPU's own assembly is needed:
 //  - rectangles, lines and points: expanded or rasterised by the GE's own rules on the CPU;
@@ -25,6 +28,8 @@
 #include <vector>
 
 #include "geometry/accuracy_profile.h"
+#include "geometry/spline.h"
+#include "geometry/transform.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
 #include "hle/renderer.h"
@@ -67,6 +72,17 @@ public:
     // `dstTexture`: the fragment shader reads the destination through a texture.
     bool prepare(const Memory& mem, const GeState& st, const PrimPacket& p, bool texture, bool fog, bool cull,
                  bool cullCcw, bool dstTexture, GpuDraw& out);
+    // Bezier/spline patches, as PPSSPP's GL backend draws them with its CPU tessellation: the
+    // vertices geo::tessellatePatch generates (model space) go through the vertex shader as float
+    // vertices — position, UV (read or generated), the normal when the control points have one
+    // or lighting made one, the colour (8888) when the control points have one.
+    // acceptPatch: whether the patch can take this path (false, reason counted: drawn as lines or
+    // points, through mode, the alpha rule, destination reads through a texture — as for PRIMs);
+    // asked before tessellating. preparePatch then fills `out` from the tessellation;
+    // `hasColor`/`hasNormal` as the CPU path reads the patch (geo::DrawFrontEnd::patch).
+    bool acceptPatch(const GeState& st, const PatchPacket& p, bool texture, bool dstTexture);
+    bool preparePatch(const GeState& st, const geo::TessOutput& tess, bool hasColor, bool hasNormal, bool texture,
+                      bool fog, bool cull, bool cullCcw, GpuDraw& out);
     // Uploads the vertex bytes, indices and uniforms and draws with `prog` (already bound, with
     // the fragment state applied). Leaves GL_CLIP_DISTANCE0 and face culling as it found them
     // (off). The geometry shader culls and clips (hw_geometry.cpp).
@@ -74,6 +90,8 @@ public:
     const GpuVertexStats& stats() const { return stats_; }
 
 private:
+    // What both kinds of draw reject before their vertices are looked at.
+    bool passesCommonChecks(const GeState& st, bool texture, bool dstTexture);
     bool reject(CpuReason r) {
         ++stats_.cpu[size_t(r)];
         return false;
@@ -84,6 +102,7 @@ private:
     GLuint vtxBuf_ = 0, vtxTex_ = 0, idxBuf_ = 0;
     GpuVertexStats stats_;
     std::vector<u32> rawIndices_;
+    geo::MatrixFold fold_;  // world·view·proj while the matrices stay the same
 };
 
 }  // namespace ge::gl

@@ -97,6 +97,8 @@ public:
     void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p) {
         frontEnd_.keepOpenVertices(mem, st, p);
     }
+    // A patch drawn elsewhere (the GPU vertex path): ends any open PRIM.
+    void endOpenPrim() { frontEnd_.endOpenPrim(); }
     // Immediate vertices, already in drawing coordinates; the AP2 flags of the packet override
     // the state (geo::immediateState, ge-rules.md §3.12).
     void processImmediate(const GeState& st, const ImmPacket& p, Geometry& out);
