@@ -123,9 +123,11 @@ TEST(ReplayBudget, DistinctOverlappingRegistersPayloadsAreCharged) {
 
 // The translation of a block found through the kept scan is the translation of a fresh one:
 // the same TBW/TBP/BASE rewrites, in order, with the player's state carried across records.
+// Blocks of 256 bytes and more are scanned once per payload; smaller ones are walked as they
+// are copied, each record (Replayer::kWalkBelowBytes), with the same words in the list.
 TEST(ReplayBudget, RepeatedRegistersRecordsTranslateLikeFreshOnes) {
     // One dump repeats a block three times, the other holds three copies of it.
-    auto make = [](bool shared) {
+    auto make = [](bool shared, bool large) {
         dump::DumpWriter w = start();
         std::vector<u8> tex(64 * 64 * 4, 0x7F);
         w.texture(0, tex.data(), u32(tex.size()));
@@ -134,6 +136,8 @@ TEST(ReplayBudget, RepeatedRegistersRecordsTranslateLikeFreshOnes) {
         block.push_back(word(GE_CMD_TBP0, 0x123456));
         block.push_back(word(GE_CMD_BASE, 0x080000));
         block.push_back(word(GE_CMD_TBW0 + 1, 32));
+        if (large) block.resize(std::max<size_t>(block.size(), 80), word(GE_CMD_NOP, 0));
+        else EXPECT_LT(block.size() * 4, 256u);
         w.registers(block);
         dump::Dump d = w.dump();
         for (int i = 0; i < 2; ++i) {
@@ -148,18 +152,21 @@ TEST(ReplayBudget, RepeatedRegistersRecordsTranslateLikeFreshOnes) {
         d.records.push_back(d.records[1]);
         return d;
     };
-    Replay shared(make(true), dump::ReplayOptions::kDefaultMaxGeMs, false);
-    Replay fresh(make(false), dump::ReplayOptions::kDefaultMaxGeMs, false);
-    EXPECT_EQ(shared.res.blockScans, 1u);
-    EXPECT_EQ(fresh.res.blockScans, 3u);
-    EXPECT_EQ(shared.res.listBytes, fresh.res.listBytes);
-    // The list buffers hold the same words.
-    const u32 n = u32(shared.res.listBytes + 16);
-    std::vector<u8> a(n), b(n);
-    shared.mem.read(kListBuf, a.data(), n);
-    fresh.mem.read(kListBuf, b.data(), n);
-    EXPECT_EQ(a, b);
-    EXPECT_EQ(shared.stats.commands, fresh.stats.commands);
+    for (bool large : {true, false}) {
+        SCOPED_TRACE(large ? "kept scan" : "walked");
+        Replay shared(make(true, large), dump::ReplayOptions::kDefaultMaxGeMs, false);
+        Replay fresh(make(false, large), dump::ReplayOptions::kDefaultMaxGeMs, false);
+        EXPECT_EQ(shared.res.blockScans, large ? 1u : 3u);
+        EXPECT_EQ(fresh.res.blockScans, 3u);
+        EXPECT_EQ(shared.res.listBytes, fresh.res.listBytes);
+        // The list buffers hold the same words.
+        const u32 n = u32(shared.res.listBytes + 16);
+        std::vector<u8> a(n), b(n);
+        shared.mem.read(kListBuf, a.data(), n);
+        fresh.mem.read(kListBuf, b.data(), n);
+        EXPECT_EQ(a, b);
+        EXPECT_EQ(shared.stats.commands, fresh.stats.commands);
+    }
 }
 
 // Every hostile dump, each record type's shared-payload shape among them: the replay ends, and

@@ -60,6 +60,25 @@ TEST(TextureValidity, ReusesUntilAnEventAndTheContentChange) {
     EXPECT_EQ(r.use(0), Cache::Use::Reuse);
 }
 
+// Writes are filtered by 64 KiB page before the walk over the entries: a write one page away
+// from every entry finds nothing, a write that spans pages finds the entry in its last page, and
+// after an eviction the evicted entry's page still answers (a walk, never a missed entry).
+TEST(TextureValidity, WritesAwayFromEveryEntryAreFilteredByPage) {
+    Rig r;
+    EXPECT_EQ(r.use(0), Cache::Use::Build);
+    r.px.mem.write32(texAt(0), 0x0BADF00D);
+    r.cache.invalidate(texAt(0) + 0x10000, 0x100);  // the next page
+    r.cache.invalidate(texAt(0) - 0x10000, 0x100);  // the page before
+    EXPECT_EQ(r.use(0), Cache::Use::Reuse);
+    EXPECT_EQ(r.cache.stats().rehashes, 0u);
+    // From two pages below up to the texture's first byte: found.
+    r.cache.invalidate(texAt(0) - 0x20000, 0x20001);
+    EXPECT_EQ(r.use(0), Cache::Use::Rebuild);
+    // A page past the 2^28 mark shares the last bit: far writes are still looked at.
+    r.cache.invalidate(0x7FFF0000, 0x100);
+    EXPECT_EQ(r.use(0), Cache::Use::Reuse);
+}
+
 TEST(TextureValidity, EvictsLeastRecentlyUsedToThreeQuartersOfTheBudget) {
     Rig r(texcache::Budget{1000, 4});
     for (int i = 0; i < 4; ++i) EXPECT_EQ(r.use(i), Cache::Use::Build);

@@ -20,6 +20,7 @@
 // Not thread-safe: a backend that looks up from several threads holds its own lock.
 #pragma once
 #include <algorithm>
+#include <bitset>
 #include <cstring>
 #include <unordered_map>
 #include <utility>
@@ -121,6 +122,7 @@ public:
         Entry& e = entries_[key];
         for (int l = 0; l < count; ++l) e.hashes[l] = hashTextureLevel(mem, st, first + l);
         sourceRange(st, first, count, e.begin, e.end);
+        markPages(e.begin, e.end);
         e.clut = usesClut(st);
         e.lastUse = clock_;
         ++stats_.builds;
@@ -142,6 +144,7 @@ public:
             return;
         }
         const u64 begin = Memory::drawingAddress(addr), end = begin + size;
+        if (!pagesMarked(begin, end)) return;  // no entry's source there
         for (auto& kv : entries_)
             if (kv.second.begin < end && begin < kv.second.end) kv.second.suspect = true;
     }
@@ -155,6 +158,7 @@ public:
         for (auto& kv : entries_) onDrop(kv.second);
         entries_.clear();
         bytes_ = 0;
+        pages_.reset();
     }
 
     const ValidityStats& stats() const { return stats_; }
@@ -181,7 +185,26 @@ private:
         }
     }
 
+    // Which 64 KiB pages of drawing addresses hold some entry's source bytes, so that a write to
+    // none of them (a replay's display-list blocks and vertex payloads, an emulator's writes to
+    // its game's RAM) is answered without a walk over every entry. Set as entries are made, reset
+    // only when all go: an evicted entry's pages stay marked, which costs a walk, never a miss.
+    // Pages from 2^28 on share the last bit.
+    static constexpr u32 kPageShift = 16, kPages = 1u << (28 - kPageShift);
+    static size_t pageOf(u64 a) { return size_t(std::min<u64>(a >> kPageShift, kPages - 1)); }
+    void markPages(u64 begin, u64 end) {
+        if (end <= begin) return;
+        for (size_t pg = pageOf(begin), last = pageOf(end - 1); pg <= last; ++pg) pages_.set(pg);
+    }
+    bool pagesMarked(u64 begin, u64 end) const {
+        if (end <= begin) return false;
+        for (size_t pg = pageOf(begin), last = pageOf(end - 1); pg <= last; ++pg)
+            if (pages_.test(pg)) return true;
+        return false;
+    }
+
     Budget budget_;
+    std::bitset<kPages> pages_;
     std::unordered_map<TextureKey, Entry, TextureKeyHash> entries_;
     size_t bytes_ = 0;
     u64 clock_ = 0;

@@ -200,7 +200,12 @@ void GlRendererImpl::syncMemoryForRead(u32 addr, u32 size) {
 void GlRendererImpl::memoryWritten(u32 addr, u32 size) {
     flush();
     fb_.memoryWritten(addr, size);
-    ++generation_;
+    // Only the textures whose bytes were written are re-hashed: a replay writes every display
+    // list block and vertex payload through here, and a generation change would re-hash every
+    // cached texture at its next use. (The batch is empty after the flush, so no pending draw
+    // uses a texture that is rebuilt.)
+    if (size) textures_.invalidate(addr, size);
+    else ++generation_;
 }
 
 void GlRendererImpl::flushToMemory() {

@@ -42,6 +42,9 @@ public:
     // Returns the entry for the current texture state, decoding/uploading when needed.
     // `generation` is the renderer's memory generation; `clutHash` the palette contents hash.
     const TextureEntry* get(const Memory& mem, const GeState& st, int levelCount, u64 generation, u64 clutHash);
+    // Guest memory [addr, addr + size) was written by the host: the entries whose bytes lie there
+    // are re-hashed when next used (a change of `generation` re-hashes every entry).
+    void invalidate(u32 addr, u32 size) { cache_.invalidate(addr, size); }
     const TextureCacheStats& stats() const { return stats_; }
     void clear();
 

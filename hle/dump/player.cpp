@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <functional>
 #include <map>
 #include <unordered_map>
 #include <vector>
@@ -57,8 +56,8 @@ private:
     void registers(const Record& r, const u8* p);
     // Writes `size` bytes into the list buffer, in pieces that `produce(dst, offset, n)` fills;
     // it returns how many of the n bytes to write (fewer: the block ends there).
-    using Producer = std::function<size_t(u8*, size_t, size_t)>;
-    void appendToList(size_t size, const Producer& produce);
+    template <class Produce>
+    void appendToList(size_t size, Produce&& produce);
     void wrapList();
     void sync();
     void endList();
@@ -90,6 +89,7 @@ private:
     PushbufMapper mapper_;
 
     std::vector<u32> pending_;  // words queued by data records for the next REGISTERS block
+    std::vector<u8> head_;      // pending_ as list bytes, ahead of a block (reused)
     std::vector<u8> piece_;     // one piece of a block on its way into the list buffer (reused)
     // Scans of REGISTERS payloads by (offset << 32 | size). Bounded: kept scans hold at most
     // kMaxScanIndices indices and kMaxScans entries (the cache starts over when full), and a
@@ -97,6 +97,10 @@ private:
     std::unordered_map<u64, BlockScan> scans_;
     u64 scanIndices_ = 0;
     static constexpr size_t kMaxBlockSpecials = 1u << 16, kMaxScanIndices = 1u << 22, kMaxScans = 1u << 16;
+    // Blocks below this size are walked word by word as they are copied, not looked up: most
+    // records of a game's dump are a few state words and a kick, each its own payload, and a
+    // kept scan would cost more than the walk (a hash-table entry and an allocation per record).
+    static constexpr u32 kWalkBelowBytes = 256;
     u32 listBuf_ = 0;           // 0 until the first REGISTERS block (as PPSSPP)
     u32 pos_ = 0;               // where the next word goes
     u32 lastTex_[8] = {}, lastBufw_[8] = {};
@@ -186,7 +190,8 @@ void Replayer::wrapList() {
     sync();
 }
 
-void Replayer::appendToList(size_t size, const Producer& produce) {
+template <class Produce>
+void Replayer::appendToList(size_t size, Produce&& produce) {
     const u32 end = listBuf_ + kListBufSize;
     // PPSSPP wraps when the words and 8 bytes for the next BASE + JUMP would reach the end.
     if (u64(pos_) + size + 8 >= end) wrapList();
@@ -282,16 +287,25 @@ void Replayer::registers(const Record& r, const u8* p) {
         t_.startList(listBuf_, pos_);
         t_.runTo(pos_, 16);
     }
-    const BlockScan& scan = scanBlock(r, p);
+    // A small block is walked whole as it is copied (charged as a scan); a larger one through
+    // its kept scan.
+    const bool small = r.size < kWalkBelowBytes;
+    if (small) {
+        ++res_.blockScans;
+        res_.scannedBytes += r.size;
+    }
+    const BlockScan* scan = small ? nullptr : &scanBlock(r, p);
+    const bool walk = !scan || scan->dense;
     // The queued words, then the block's words as they are with the few the player rewrites
     // patched in (payload and list buffer both hold little-endian GE words), produced one list
     // piece at a time so that no copy of a whole large block is made.
-    std::vector<u8> head(4 * pending_.size());
+    std::vector<u8>& head = head_;
+    head.resize(4 * pending_.size());
     for (size_t k = 0; k < pending_.size(); ++k) writeLE32(&head[4 * k], pending_[k]);
     pending_.clear();
     const size_t words = r.size / 4;
     size_t next = 0;  // the next entry of scan.special, or the next word when the scan is dense
-    const Producer produce = [&](u8* dst, size_t off, size_t n) -> size_t {
+    auto produce = [&](u8* dst, size_t off, size_t n) -> size_t {
         // [off, off + n) of head + payload; off and n are multiples of 4.
         const size_t from = off, to = off + n;
         if (from < head.size()) std::memcpy(dst, &head[from], std::min(to, head.size()) - from);
@@ -304,12 +318,13 @@ void Replayer::registers(const Record& r, const u8* p) {
         auto rewrite = [&](size_t w) {
             return translateWord(dst + (head.size() + 4 * w - from));
         };
-        if (scan.dense) {
+        if (walk) {
             for (next = std::max(next, firstWord); next < endWord; ++next)
                 if (!rewrite(next)) return head.size() + 4 * (next + 1) - from;  // the kick ends the block
         } else {
-            for (; next < scan.special.size() && scan.special[next] < endWord; ++next)
-                if (!rewrite(scan.special[next])) return head.size() + 4 * (scan.special[next] + 1) - from;
+            const std::vector<u32>& special = scan->special;
+            for (; next < special.size() && special[next] < endWord; ++next)
+                if (!rewrite(special[next])) return head.size() + 4 * (special[next] + 1) - from;
         }
         return n;
     };
