@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "hle/ge_state.h"
 
+#include <array>
 #include <cstdio>
 #include <vector>
 
@@ -99,24 +100,24 @@ u32 GeState::textureBufWidth(int level) const {
 
 namespace {
 
-VertexLayout computeLayout(u32 vtype) {
-    static constexpr u8 tcSize[4] = {0, 2, 4, 8}, tcAlign[4] = {1, 1, 2, 4};
-    static constexpr u8 colSize[8] = {0, 0, 0, 0, 2, 2, 2, 4}, colAlign[8] = {1, 1, 1, 1, 2, 2, 2, 4};
-    static constexpr u8 nrmSize[4] = {0, 3, 6, 12}, nrmAlign[4] = {1, 1, 2, 4};
-    static constexpr u8 posSize[4] = {3, 3, 6, 12}, posAlign[4] = {1, 1, 2, 4};  // VT=0: 3 bytes reserved
-    static constexpr u8 wSize[4] = {0, 1, 2, 4};
+constexpr VertexLayout computeLayout(u32 vtype) {
+    constexpr u8 tcSize[4] = {0, 2, 4, 8}, tcAlign[4] = {1, 1, 2, 4};
+    constexpr u8 colSize[8] = {0, 0, 0, 0, 2, 2, 2, 4}, colAlign[8] = {1, 1, 1, 1, 2, 2, 2, 4};
+    constexpr u8 nrmSize[4] = {0, 3, 6, 12}, nrmAlign[4] = {1, 1, 2, 4};
+    constexpr u8 posSize[4] = {3, 3, 6, 12}, posAlign[4] = {1, 1, 2, 4};  // VT=0: 3 bytes reserved
+    constexpr u8 wSize[4] = {0, 1, 2, 4};
     VertexLayout l;
     u32 off = 0;
     u8 maxAlign = 1;
     auto place = [&](u32 size, u8 align) -> u8 {
         off = (off + align - 1) & ~u32(align - 1);
-        u8 at = u8(off);
+        const u8 at = u8(off);
         off += size;
         if (align > maxAlign) maxAlign = align;
         return at;
     };
-    u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
-    u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
+    const u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
+    const u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
     if (wt) l.weightOff = place(wSize[wt] * wc, wSize[wt]);
     if (tc) l.tcOff = place(tcSize[tc], tcAlign[tc]);
     if (colSize[col]) l.colOff = place(colSize[col], colAlign[col]);
@@ -127,22 +128,19 @@ VertexLayout computeLayout(u32 vtype) {
     return l;
 }
 
-// The layout depends on 14 bits of VTYPE (TT, CT, NT, VT, WT: bits 0–10; the weight count: 14–16); every reader of a draw asks for it, so all 16,384 are made once, immutable.
-u32 layoutIndex(u32 vtype) { return (vtype & 0x7FF) | ((vtype >> 3) & 0x3800u); }
+// The layout depends on 14 bits of VTYPE (TT, CT, NT, VT, WT: bits 0–10; the weight count:
+// 14–16). Every reader of a draw asks for it (several times a draw), so all 16,384 are made at
+// compile time: a lookup is an index, with no initialisation guard.
+constexpr u32 layoutIndex(u32 vtype) { return (vtype & 0x7FF) | ((vtype >> 3) & 0x3800u); }
+constexpr auto kLayouts = [] {
+    std::array<VertexLayout, 1u << 14> t{};
+    for (u32 i = 0; i < t.size(); ++i) t[i] = computeLayout((i & 0x7FF) | ((i & 0x3800u) << 3));
+    return t;
+}();
 
 }  // namespace
 
-VertexLayout VertexLayout::fromVtype(u32 vtype) {
-    static const std::vector<VertexLayout> table = [] {
-        std::vector<VertexLayout> t(1u << 14);
-        for (u32 i = 0; i < t.size(); ++i) {
-            const u32 vt = (i & 0x7FF) | ((i & 0x3800u) << 3);
-            t[i] = computeLayout(vt);
-        }
-        return t;
-    }();
-    return table[layoutIndex(vtype)];
-}
+VertexLayout VertexLayout::fromVtype(u32 vtype) { return kLayouts[layoutIndex(vtype)]; }
 
 u32 GeState::vertexSize() const { return VertexLayout::fromVtype(regs[GE_CMD_VTYPE]).size; }
 
