@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <numeric>
+#include <type_traits>
 
 #include "hle/pixel_format.h"
 
@@ -24,6 +25,9 @@ inline float readF32(const u8* p) {
 struct RawVertex {
     float pos[3] = {}, uv[2] = {}, nrm[3] = {}, w[8] = {}, col[4] = {};
 };
+
+inline float* weightsOf(RawVertex& r) { return r.w; }
+inline float* weightsOf(DecodedVertex& v) { return v.weights; }
 
 }  // namespace
 
@@ -51,8 +55,23 @@ u32 VertexReader::indexSize() const {
 
 namespace {
 
+// The colour bytes (R, G, B, A) of a stored colour (ge-rules.md §5.4): 16-bit formats expand by
+// bit replication; 8888 as stored.
+inline u32 storedColor(const u8* q, u32 col) {
+    switch (col) {
+    case 4: return decode5650(readLE16(q));
+    case 5: return decode5551(readLE16(q));
+    case 6: return decode4444(readLE16(q));
+    default: return readLE32(q);
+    }
+}
+
 // Decodes one stored copy at p (layout size bytes, already bounds-checked) per ge-rules.md §5.4.
-void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawVertex& r) {
+// Out is RawVertex (every component as float, for morphing) or DecodedVertex (one copy: the
+// colour's bytes kept as they are, which is what a float round trip would give back).
+template <class Out>
+void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, Out& r) {
+    constexpr bool raw = std::is_same_v<Out, RawVertex>;
     const u32 tc = vtype & 3, col = (vtype >> 2) & 7, nrm = (vtype >> 5) & 3, pos = (vtype >> 7) & 3;
     const u32 wt = (vtype >> 9) & 3, wc = ((vtype >> 14) & 7) + 1;
 
@@ -61,9 +80,9 @@ void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawV
         const u8* q = p + l.weightOff;
         for (u32 i = 0; i < wc; ++i) {
             switch (wt) {
-            case 1: r.w[i] = float(q[i]) / 128.0f; break;
-            case 2: r.w[i] = float(readLE16(q + 2 * i)) / 32768.0f; break;
-            default: r.w[i] = readF32(q + 4 * i); break;
+            case 1: weightsOf(r)[i] = float(q[i]) / 128.0f; break;
+            case 2: weightsOf(r)[i] = float(readLE16(q + 2 * i)) / 32768.0f; break;
+            default: weightsOf(r)[i] = readF32(q + 4 * i); break;
             }
         }
     }
@@ -93,15 +112,12 @@ void decodeRaw(const u8* p, u32 vtype, const VertexLayout& l, bool through, RawV
     }
     // Colour: 16-bit formats expand by bit replication (ge-rules.md §5.4); 8888 bytes R, G, B, A.
     if (col >= 4) {
-        const u8* q = p + l.colOff;
-        u32 c;
-        switch (col) {
-        case 4: c = decode5650(readLE16(q)); break;
-        case 5: c = decode5551(readLE16(q)); break;
-        case 6: c = decode4444(readLE16(q)); break;
-        default: c = readLE32(q); break;
+        const u32 c = storedColor(p + l.colOff, col);
+        if constexpr (raw) {
+            for (int i = 0; i < 4; ++i) r.col[i] = float((c >> (8 * i)) & 0xFF);
+        } else {
+            for (int i = 0; i < 4; ++i) r.color[i] = u8(c >> (8 * i));
         }
-        for (int i = 0; i < 4; ++i) r.col[i] = float((c >> (8 * i)) & 0xFF);
     }
     // Normal: s8 /128, s16 /32768, float.
     if (nrm) {
@@ -161,10 +177,16 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
     const u8* p = mem_.ptr(u32(addr), need);
     if (!p) return false;
 
-    RawVertex sum;
     if (copies == 1) {
-        decodeRaw(p, vtype_, layout_, thru, sum);
-    } else {
+        // One copy: decoded straight into `out` (the same values as through RawVertex below).
+        decodeRaw(p, vtype_, layout_, thru, out);
+        if (!hasUV()) std::copy(st_.latchUV, st_.latchUV + 2, out.uv);
+        if (!hasNormal()) std::copy(st_.latchNormal, st_.latchNormal + 3, out.nrm);
+        if (!hasColor()) materialColor(out);
+        return true;
+    }
+    RawVertex sum;
+    {
         // P' = Σ Mi·Pi over every component (manual Equation 7-1, ge-rules.md §5.5); weights not normalised.
         for (u32 m = 0; m < copies; ++m) {
             RawVertex r;
@@ -187,14 +209,18 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
     if (hasColor()) {
         for (int i = 0; i < 4; ++i) out.color[i] = colorToU8(sum.col[i]);
     } else {
-        // No vertex colour: material ambient colour and alpha (ge-rules.md §5.5).
-        const u32 mac = st_.MAC_rgb();
-        out.color[0] = u8(mac);
-        out.color[1] = u8(mac >> 8);
-        out.color[2] = u8(mac >> 16);
-        out.color[3] = u8(st_.MAA_alpha());
+        materialColor(out);
     }
     return true;
+}
+
+// No vertex colour: material ambient colour and alpha (ge-rules.md §5.5).
+void VertexReader::materialColor(DecodedVertex& out) const {
+    const u32 mac = st_.MAC_rgb();
+    out.color[0] = u8(mac);
+    out.color[1] = u8(mac >> 8);
+    out.color[2] = u8(mac >> 16);
+    out.color[3] = u8(st_.MAA_alpha());
 }
 
 bool VertexReader::readIndices(u32 iaddr, u32 count, std::vector<u32>& out) const {

@@ -48,6 +48,7 @@ public:
     bool readIndices(u32 iaddr, u32 count, std::vector<u32>& out) const;
 
 private:
+    void materialColor(DecodedVertex& out) const;
     const Memory& mem_;
     const GeState& st_;
     u32 vtype_;
