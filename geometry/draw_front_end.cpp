@@ -81,7 +81,7 @@ bool DrawFrontEnd::prim(const Memory& mem, const GeState& st, const PrimPacket& 
 // continued PRIM, and the draw order (those first) into seq_. False on unreadable index data.
 bool DrawFrontEnd::decode(const Memory& mem, const GeState& st, const PrimPacket& p) {
     VertexReader reader(mem, st, p.vtype);
-    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_, acc_);
+    setTransform(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
     ts_.sprite = p.prim == GE_PRIM_RECTANGLES && acc_.pspSpritePosition;
     cverts_.assign(pending_.begin(), pending_.end());
     seq_.clear();
@@ -133,7 +133,7 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
     if (tess.verts.empty()) return true;
     VertexReader probe(mem, st, p.vtype);
     // The tessellator generates normals when lighting needs them (docs/ge-rules.md §3.2).
-    ts_ = makeTransformState(st, p.vtype, probe.hasColor(), probe.hasNormal() || st.LTE_on(), &fold_, acc_);
+    setTransform(st, p.vtype, probe.hasColor(), probe.hasNormal() || st.LTE_on());
     cverts_.resize(tess.verts.size());
     for (size_t i = 0; i < tess.verts.size(); ++i) {
         transformVertex(ts_, tess.verts[i], cverts_[i]);
@@ -157,6 +157,7 @@ void DrawFrontEnd::immediate(const GeState& st, const ImmPacket& p, PrimitiveSin
     // Immediate vertices are already in drawing coordinates: no transform, lighting or clipping.
     ts_ = TransformState{};
     ts_.through = true;
+    tsState_ = nullptr;  // ts_ no longer holds setTransform's result
     immediateVertices(st, p.vertices, cverts_, seq_);
     RasterParams rp = rasterParamsFor(st, true, false, acc_);
     rp.fog = st.FGE_on() && !st.isThrough();
@@ -194,7 +195,7 @@ void DrawFrontEnd::keepOpenVertices(const Memory& mem, const GeState& st, const 
             break;
         default: return;
     }
-    ts_ = makeTransformState(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true, &fold_, acc_);
+    setTransform(st, p.vtype, reader.hasColor(), /*hasNormal: the format's or the latched one*/ true);
     const bool skin = reader.hasWeights() && !reader.through();
     for (size_t k = 0; k < count; ++k) {
         DecodedVertex dv;
@@ -205,6 +206,21 @@ void DrawFrontEnd::keepOpenVertices(const Memory& mem, const GeState& st, const 
         cv.valid = ok && reader.hasPosition();
         pending_.push_back(cv);
     }
+}
+
+void DrawFrontEnd::setTransform(const GeState& st, u32 vtype, bool hasColor, bool hasNormal) {
+    // What makeTransformState reads: VTYPE and the morph weights (VERTEX), the matrices, viewport,
+    // offsets, CLE, UV scale, TMAP, TSHADE and fog parameters (TRANSFORM), lights, material and
+    // NREV (LIGHTING), the level-0 texture size (TEXTURE), FGE (FRAGMENT).
+    constexpr u32 kReads = DIRTY_VERTEX | DIRTY_TRANSFORM | DIRTY_LIGHTING | DIRTY_TEXTURE | DIRTY_FRAGMENT;
+    const u32 key = (vtype & 0xFFFFFF) | u32(hasColor) << 24 | u32(hasNormal) << 25;
+    if ((dirty_ & kReads) || key != tsKey_ || &st != tsState_) {
+        ts_ = makeTransformState(st, vtype, hasColor, hasNormal, &fold_, acc_);
+        tsKey_ = key;
+        tsState_ = &st;
+        dirty_ = 0;
+    }
+    ts_.sprite = false;  // the caller sets it for rectangles
 }
 
 // Assembles seq_ as `prim` (assembly.h); what does not complete a primitive, and the strip/fan

@@ -106,6 +106,10 @@ public:
         pending_.clear();
         stripOdd_ = false;
     }
+    // The GeDirty groups of every packet (PrimPacket/PatchPacket/ImmPacket::dirty), which a
+    // backend hands on at the top of each draw call, whether or not the front end then sees the
+    // draw: the transform state is remade only when a group it reads changed (hle/ge_cmds.def).
+    void noteDirty(u32 groups) { dirty_ |= groups; }
 
     // Of the draw being assembled (valid in sink calls and after the call until the next draw).
     const RasterParams& rasterParams() const { return rp_; }
@@ -151,12 +155,20 @@ private:
     void emit(PrimKind kind, const ScreenVertex* a, const ScreenVertex* b, const ScreenVertex* c,
               const ScreenVertex* prov, const s32 ids[4], int joinPrev);
     void trimVertices();
+    // ts_ = makeTransformState(st, vtype, hasColor, hasNormal) with sprite = false, made again only
+    // when a group it reads is dirty, the format or the state object differs; else kept.
+    void setTransform(const GeState& st, u32 vtype, bool hasColor, bool hasNormal);
 
     // Per-draw context.
     PrimitiveSink* sink_ = nullptr;
     AccuracyProfile acc_;
     TransformState ts_;
     MatrixFold fold_;  // the last draw's matrix products (makeTransformState)
+    // What ts_ was made for by setTransform (tsState_ null: not made by it), and the groups
+    // changed since.
+    u32 tsKey_ = ~0u;
+    const GeState* tsState_ = nullptr;
+    u32 dirty_ = DIRTY_ALL;
     RasterParams rp_;
     bool cull_ = false, cullClockwise_ = false;
     bool alphaFull_ = true;

@@ -412,6 +412,7 @@ void SoftRenderer::drawPrim(const PrimPacket& p) {
     Impl& I = *impl_;
     const GeState& st = *p.state;
     I.pendingDirty |= p.dirty;
+    I.frontEnd.noteDirty(p.dirty);
     ++I.stats.draws;
     I.beginDraw();
     if (!I.frontEnd.prim(I.mem, st, p, I, nullptr)) return;
@@ -422,6 +423,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
     Impl& I = *impl_;
     const GeState& st = *p.state;
     I.pendingDirty |= p.dirty;
+    I.frontEnd.noteDirty(p.dirty);
     ++I.stats.patches;
     I.beginDraw();
     if (!I.frontEnd.patch(I.mem, st, p, I, nullptr)) return;
@@ -431,6 +433,7 @@ void SoftRenderer::drawPatch(const PatchPacket& p) {
 void SoftRenderer::drawImmediate(const ImmPacket& p) {
     Impl& I = *impl_;
     I.pendingDirty |= p.dirty;
+    I.frontEnd.noteDirty(p.dirty);
     ++I.stats.immediates;
     if (p.vertices.empty()) return;
     // Drawn with a state copy that has the first vertex's AP2 overrides (docs/ge-rules.md §3.12).

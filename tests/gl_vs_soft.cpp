@@ -423,6 +423,45 @@ void immediateClearModeScene(ListBuilder& b) {
     b.cmd(GE_CMD_CMODE, 0);  // any other command ends the immediate primitive
 }
 
+// The draw front end makes a draw's transform state again only when a register group it reads
+// changed (geo::DrawFrontEnd::setTransform, the packets' GeDirty groups): three draws of the same
+// vertices, each after one group changed. A 16x16 rectangle of two triangles without a vertex
+// colour (so MAC colours it) at the top left; OFFSETX moved by 32 pixels (TRANSFORM) draws it at
+// the top right, still red; MAC green (LIGHTING) then turns the right one green. A draw that kept
+// the old transform state would land left, or stay red.
+void dirtyGroupsScene(ListBuilder& b) {
+    frameSetup(b);
+    b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
+    const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    b.setMatrix(GeMatrix::World, id);
+    b.setMatrix(GeMatrix::View, id);
+    b.setMatrix(GeMatrix::Proj, id);
+    b.enable(GE_CMD_BCE, false);
+    // Viewport 64x64 around (2048, 2048) with the drawing area's origin at 2048 − 32: clip x −1
+    // is pixel 0, x 1 pixel 64 (y is flipped: clip y 1 is row 0).
+    const u32 vtype = vt::POS_F;
+    const float xy[6][2] = {{-1, 1}, {-0.5f, 1}, {-1, 0.5f}, {-0.5f, 1}, {-0.5f, 0.5f}, {-1, 0.5f}};
+    BuildVertex v[6];
+    for (int i = 0; i < 6; ++i) v[i].x = xy[i][0], v[i].y = xy[i][1], v[i].z = 0.5f;
+    const auto bytes = packVertices(vtype, v, 6);
+    b.materialAmbient(0xFF0000FF);
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
+    b.offset(2048 - 32 - 32, 2048 - 32);
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
+    b.materialAmbient(0xFF00FF00);
+    b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
+}
+
+TEST(GlVsSoft, EachDrawSeesTheRegisterGroupsChangedBeforeIt) {
+    checkEveryBackend(dirtyGroupsScene, [](const std::vector<u8>& vram) {
+        auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 64 + size_t(x)) * 4]) & 0xFFFFFFu; };
+        EXPECT_EQ(rgb(8, 8), 0x0000FFu);
+        EXPECT_EQ(rgb(40, 8), 0x00FF00u);
+        EXPECT_EQ(rgb(24, 8), 0u);
+        EXPECT_EQ(rgb(8, 40), 0u);
+    });
+}
+
 TEST(GlVsSoft, ImmediatePrimitivesInClearModeDrawFlat) {
     checkEveryBackend(immediateClearModeScene, [](const std::vector<u8>& vram) {
         auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 64 + size_t(x)) * 4]) & 0xFFFFFFu; };

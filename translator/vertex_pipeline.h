@@ -99,6 +99,8 @@ public:
     }
     // A patch drawn elsewhere (the GPU vertex path): ends any open PRIM.
     void endOpenPrim() { frontEnd_.endOpenPrim(); }
+    // Every draw packet's dirty groups, first thing (geo::DrawFrontEnd::noteDirty).
+    void noteDirty(u32 groups) { frontEnd_.noteDirty(groups); }
     // Immediate vertices, already in drawing coordinates; the AP2 flags of the packet override
     // the state (geo::immediateState, ge-rules.md §3.12).
     void processImmediate(const GeState& st, const ImmPacket& p, Geometry& out);
