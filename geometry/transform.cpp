@@ -37,22 +37,58 @@ inline float geTerm(float a, float b) {
     return float(value(ba, ea) * value(bb, eb));  // overflows to ±inf only for |other| ≥ ~1
 }
 
+// Whether any of the n values has the exponent field 255, where geTerm leaves IEEE arithmetic.
+inline bool anyExp255(const float* v, int n) {
+    u32 hit = 0;
+    for (int i = 0; i < n; ++i) {
+        u32 b;
+        std::memcpy(&b, &v[i], 4);
+        hit |= u32((b & 0x7F800000u) == 0x7F800000u);
+    }
+    return hit != 0;
+}
+
+// geTerm where neither factor has exponent 255: zero when either is zero or denormal, else the
+// IEEE product — the same value, without branches (a select).
+inline float finiteTerm(float a, float b) {
+    u32 ba, bb;
+    std::memcpy(&ba, &a, 4);
+    std::memcpy(&bb, &b, 4);
+    const float prod = a * b;
+    return ((ba & 0x7F800000u) && (bb & 0x7F800000u)) ? prod : 0.0f;
+}
+
+// out_r = (t(m[r], p0) + t(m[R + r], p1)) + (t(m[2R + r], p2) + m[3R + r]) for R rows: the
+// point products below, with the term rule `Term`.
+template <int R, float (*Term)(float, float)>
+inline void pointRows(const float* m, const float p[3], float* out) {
+    for (int r = 0; r < R; ++r)
+        out[r] = (Term(m[r], p[0]) + Term(m[R + r], p[1])) + (Term(m[2 * R + r], p[2]) + m[3 * R + r]);
+}
+
 }  // namespace
 
+// The products take geTerm's branch-free form unless a factor has exponent 255 (rare: the
+// infinities and NaNs games leave in unused vertex components), which takes geTerm itself.
 void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
     // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
-    for (int r = 0; r < 3; ++r)
-        out[r] = (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
+    if (anyExp255(m, 9) || anyExp255(p, 3)) pointRows<3, geTerm>(m, p, out);
+    else pointRows<3, finiteTerm>(m, p, out);
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
-    for (int r = 0; r < 3; ++r) out[r] = geTerm(m[r], d[0]) + geTerm(m[3 + r], d[1]) + geTerm(m[6 + r], d[2]);
+    if (anyExp255(m, 9) || anyExp255(d, 3)) {
+        for (int r = 0; r < 3; ++r) out[r] = geTerm(m[r], d[0]) + geTerm(m[3 + r], d[1]) + geTerm(m[6 + r], d[2]);
+    } else {
+        for (int r = 0; r < 3; ++r)
+            out[r] = finiteTerm(m[r], d[0]) + finiteTerm(m[3 + r], d[1]) + finiteTerm(m[6 + r], d[2]);
+    }
 }
 
 void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
     // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
-    for (int r = 0; r < 4; ++r)
-        out[r] = (geTerm(m[r], p[0]) + geTerm(m[4 + r], p[1])) + (geTerm(m[8 + r], p[2]) + m[12 + r]);
+    if (anyExp255(m, 12) || anyExp255(p, 3)) pointRows<4, geTerm>(m, p, out);
+    else pointRows<4, finiteTerm>(m, p, out);
 }
 
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold,

@@ -173,6 +173,7 @@ struct VertexLayout {
     u8 weightOff = 0, tcOff = 0, colOff = 0, nrmOff = 0, posOff = 0;
     u8 size = 0;       // one vertex
     u8 align = 1;
+    u8 unused = 0;     // eight bytes: a lookup copies one word (seven made the copy stall on x86)
     static VertexLayout fromVtype(u32 vtype);
 };
 
