@@ -78,6 +78,31 @@ inline float lodFromStepsF(const RasterParams& rp, float ds, float dt) {
 
 }  // namespace
 
+GradientPlanes colourGradientPlanes(const ScreenVertex* const o[3], const s64 A[3], const s64 B[3], bool swapped,
+                                    s64 area) {
+    GradientPlanes g;
+    g.ref = colourGradientReference(o);
+    auto plane = [&](int ch, const int c[3]) {
+        s64 sumA = 0, sumB = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int e = swapped ? (k + 1) % 3 : k;  // the edge weighting o[k] (orderWeights)
+            sumA += c[k] * A[e], sumB += c[k] * B[e];
+        }
+        g.refC[ch] = c[g.ref];
+        g.gx[ch] = floorDiv(4096 * sumA, area);
+        g.gy[ch] = floorDiv(4096 * sumB, area);
+    };
+    for (int ch = 0; ch < 4; ++ch) {
+        const int c[3] = {o[0]->color[ch], o[1]->color[ch], o[2]->color[ch]};
+        plane(ch, c);
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+        const int c[3] = {o[0]->secondary[ch], o[1]->secondary[ch], o[2]->secondary[ch]};
+        plane(4 + ch, c);
+    }
+    return g;
+}
+
 u8 fogToByte(float f) {
     u32 bits;
     std::memcpy(&bits, &f, 4);
@@ -303,26 +328,11 @@ struct TriangleWalk {
     // The gradient planes of channels 0–3 (primary RGBA) and 4–6 (secondary RGB).
     void setupGradients(s64 area) {
         gradients = true;
-        const int r = colourGradientReference(o);
-        refX = o[r]->x, refY = o[r]->y;
-        auto plane = [&](int ch, const int c[3]) {
-            s64 sumA = 0, sumB = 0;
-            for (int k = 0; k < 3; ++k) {
-                const int e = swapped ? (k + 1) % 3 : k;  // the edge weighting o[k] (orderWeights)
-                sumA += c[k] * A[e], sumB += c[k] * B[e];
-            }
-            refC[ch] = c[r];
-            gx[ch] = floorDiv(4096 * sumA, area);
-            gy[ch] = floorDiv(4096 * sumB, area);
-        };
-        for (int ch = 0; ch < 4; ++ch) {
-            const int c[3] = {o[0]->color[ch], o[1]->color[ch], o[2]->color[ch]};
-            plane(ch, c);
-        }
-        for (int ch = 0; ch < 3; ++ch) {
-            const int c[3] = {o[0]->secondary[ch], o[1]->secondary[ch], o[2]->secondary[ch]};
-            plane(4 + ch, c);
-        }
+        const GradientPlanes g = colourGradientPlanes(o, A, B, swapped, area);
+        refX = o[g.ref]->x, refY = o[g.ref]->y;
+        std::copy(g.refC, g.refC + 7, refC);
+        std::copy(g.gx, g.gx + 7, gx);
+        std::copy(g.gy, g.gy + 7, gy);
     }
 
     s64 edgeAt(int i, s64 px, s64 py) const {

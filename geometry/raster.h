@@ -184,6 +184,19 @@ inline int colourGradientReference(const ScreenVertex* const o[3]) {
     return r;
 }
 
+// The gradient planes of a triangle of positive `area` (twice its signed area, 1/16 units), its
+// vertices in attribute order `o`, and rasterTriangle's edge coefficients A, B (the edge weighting
+// o[k] is k, or (k + 1) % 3 when the triangle was `swapped` to clockwise order): channels 0–3
+// primary RGBA, 4–6 secondary RGB; `ref` the index of the reference vertex in o, refC its values.
+// The software rasteriser and the GL exact record (translator/tri_setup.cpp) both use this.
+struct GradientPlanes {
+    int ref = 0;
+    int refC[7] = {};
+    s64 gx[7] = {}, gy[7] = {};
+};
+GradientPlanes colourGradientPlanes(const ScreenVertex* const o[3], const s64 A[3], const s64 B[3], bool swapped,
+                                    s64 area);
+
 // A rectangle as rasterRectangle walks it: the covered pixels (inclusive, clipped) and the texture
 // coordinates in single precision — s, t at the first pixel centre and their change per two
 // pixels along X and down Y (an odd pixel of a pair adds half a step). False when it covers

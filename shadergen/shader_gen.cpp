@@ -115,7 +115,9 @@ std::string recFlag(u32 f) { return "((" + recTexel(tri::kHeader) + ".x & " + st
 // interpolated attribute uses (rasterTriangle's coverage test, orderWeights, interpolateF).
 void emitExactEdges(std::string& s) {
     const std::string hdr = recTexel(tri::kHeader);
-    s += "flat in uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n";
+    s += "flat in uvec4 v_rec[" + std::to_string(tri::kVaryingTexels) + "];\n"
+         "flat in int v_recBase;\n"
+         "uniform usamplerBuffer u_tris;\n";
     s += "int64_t g_cx, g_cy;\n"
          "vec3 g_w;\n";  // edge weights of the sample point in attribute order
     // Edge function i at drawing position (cx, cy) (1/16 units): rasterTriangle's e_i.
@@ -172,36 +174,26 @@ void emitExactDepthColor(std::string& s) {
          "                interpF(vec3(c0.z, c1.z, c2.z), g_w, r), interpF(vec3(c0.w, c1.w, c2.w), g_w, r));\n"
          "  return ivec4(clamp(roundEven(v), 0.0, 255.0));\n"
          "}\n";
-    // Gradient planes (raster.cpp setupGradients, colourFromGradients): per channel
-    // g = floor(4096·Σc_k·A_k / area) along X and the same with B along Y, A and B the edge
-    // coefficients in attribute order, area = ΣC_i; the value floor((4096·c_ref + gx·dx + gy·dy)
-    // / 4096) from the reference vertex, kept to 0–255.
+    // Gradient planes (geo::colourGradientPlanes, raster.cpp colourFromGradients): channel ch's
+    // gx, gy from the record's texel kGrad + first + ch; the value
+    // floor((4096·c_ref + gx·dx + gy·dy) / 4096) from the reference vertex, kept to 0–255.
     const std::string hdr = recTexel(tri::kHeader);
-    s += "int64_t floorDiv64(int64_t n, int64_t d) {\n"
-         "  return n >= int64_t(0) ? n / d : -((-n + d - int64_t(1)) / d);\n"
-         "}\n"
-         "ivec4 gradColor(uvec3 pc) {\n"
+    s += "ivec4 gradColor(uvec3 pc, int first) {\n"
          "  int r = int((" + hdr + ".x >> " + std::to_string(tri::kGradientRefShift) + "u) & 3u);\n"
-         "  i64vec3 A = i64vec3(" + recI(tri::kIA) + ", " + recI(tri::kIA + 1) + ", " + recI(tri::kIA + 2) + ");\n"
-         "  i64vec3 B = i64vec3(" + recI(tri::kIB) + ", " + recI(tri::kIB + 1) + ", " + recI(tri::kIB + 2) + ");\n"
-         "  if (" + recFlag(tri::kFlagSwapped) + ") { A = A.yzx; B = B.yzx; }\n"
-         "  int64_t area = " + recI(tri::kIC) + " + " + recI(tri::kIC + 1) + " + " + recI(tri::kIC + 2) + ";\n"
          "  int64_t dx = g_cx - int64_t(int(" + recTexel(tri::kQ) + ".w));\n"
          "  int64_t dy = g_cy - int64_t(int(" + recTexel(tri::kRecipW) + ".w));\n"
-         "  ivec4 c0 = bytes4(pc.x), c1 = bytes4(pc.y), c2 = bytes4(pc.z);\n"
-         "  ivec4 cr = r == 0 ? c0 : (r == 1 ? c1 : c2);\n"
+         "  ivec4 cr = bytes4(r == 0 ? pc.x : (r == 1 ? pc.y : pc.z));\n"
          "  ivec4 outc;\n"
          "  for (int ch = 0; ch < 4; ++ch) {\n"
-         "    int64_t sa = int64_t(c0[ch]) * A.x + int64_t(c1[ch]) * A.y + int64_t(c2[ch]) * A.z;\n"
-         "    int64_t sb = int64_t(c0[ch]) * B.x + int64_t(c1[ch]) * B.y + int64_t(c2[ch]) * B.z;\n"
-         "    int64_t gx = floorDiv64(int64_t(4096) * sa, area), gy = floorDiv64(int64_t(4096) * sb, area);\n"
+         "    uvec4 g = texelFetch(u_tris, v_recBase + " + std::to_string(tri::kGrad) + " + min(first + ch, 6));\n"
+         "    int64_t gx = packInt2x32(ivec2(g.xy)), gy = packInt2x32(ivec2(g.zw));\n"
          "    int64_t q = (int64_t(cr[ch]) * int64_t(4096) + gx * dx + gy * dy) >> 12;\n"
          "    outc[ch] = q < int64_t(0) ? 0 : (q > int64_t(255) ? 255 : int(q));\n"
          "  }\n"
          "  return outc;\n"
-         "}\n"
-         "ivec4 vertexColor(uvec3 pc, bool varies) {\n"
-         "  return " + recFlag(tri::kFlagColourGradients) + " ? gradColor(pc) : interpColor(pc, varies);\n"
+         "}\n";
+    s += "ivec4 vertexColor(uvec3 pc, bool varies, int first) {\n"
+         "  return varies && " + recFlag(tri::kFlagColourGradients) + " ? gradColor(pc, first) : interpColor(pc, varies);\n"
          "}\n";
 }
 
@@ -685,7 +677,7 @@ void emitTextureFunction(FsText& g) {
     std::string& s = g.s;
     if (g.exact)
         s += "  ivec4 prim = vertexColor(" + recTexel(tri::kColors) + ".xyz, (" + recTexel(tri::kHeader) + ".x & " +
-             std::to_string(tri::kFlagColorVaries) + "u) != 0u);\n";
+             std::to_string(tri::kFlagColorVaries) + "u) != 0u, 0);\n";
     else
         s += "  ivec4 prim = ivec4(v_color + vec4(1.0 / 1024.0));\n";
     s += "  ivec4 c;\n";
@@ -695,7 +687,7 @@ void emitTextureFunction(FsText& g) {
     }
     if (g.exact)
         s += "  ivec3 sec = vertexColor(" + recTexel(tri::kSecondary) + ".xyz, (" + recTexel(tri::kHeader) +
-             ".x & " + std::to_string(tri::kFlagSecVaries) + "u) != 0u).rgb;\n";
+             ".x & " + std::to_string(tri::kFlagSecVaries) + "u) != 0u, 4).rgb;\n";
     else
         s += "  ivec3 sec = ivec3(v_color2 + vec3(1.0 / 1024.0));\n";
     if (k.tex) {
@@ -894,10 +886,12 @@ bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& o
         s += "layout(location = 0) in vec3 a_pos;\n"
              "uniform vec2 u_ndcScale;\n"
              "uniform usamplerBuffer u_tris;\n"
-             "flat out uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n"
+             "flat out uvec4 v_rec[" + std::to_string(tri::kVaryingTexels) + "];\n"
+             "flat out int v_recBase;\n"
              "void main() {\n"
              "  int base = (gl_VertexID / 3) * " + std::to_string(tri::kTexels) + ";\n"
-             "  for (int i = 0; i < " + std::to_string(tri::kTexels) + "; ++i) v_rec[i] = texelFetch(u_tris, base + i);\n"
+             "  for (int i = 0; i < " + std::to_string(tri::kVaryingTexels) + "; ++i) v_rec[i] = texelFetch(u_tris, base + i);\n"
+             "  v_recBase = base;\n"
              "  gl_Position = vec4(a_pos.x * u_ndcScale.x - 1.0, a_pos.y * u_ndcScale.y - 1.0, 0.0, 1.0);\n"
              "}\n";
         out = std::move(s);

@@ -60,7 +60,10 @@ inline constexpr const char* kTrisUniform = "u_tris";  // usamplerBuffer of tria
 // software rasteriser's arithmetic (geometry/raster.cpp rasterTriangle: int64 depth plane,
 // single-precision attribute sums over float edge weights in the reference's vertex order).
 namespace tri {
-inline constexpr int kTexels = 15;
+// Texels per record; the first kVaryingTexels travel from the vertex shader to the fragment
+// shader as flat varyings, the rest the fragment shader fetches where it needs them.
+inline constexpr int kTexels = 22;
+inline constexpr int kVaryingTexels = 15;
 // Triangles ("o" = attribute order: in0, in1, in2, or in2, in1, in0 for negative area).
 inline constexpr int kHeader = 0;     // x: kind | flags, y: fog byte, z: lod (float bits), w: W (float bits)
 inline constexpr int kFog = 1;        // xyz: fog factor of o[i] (float bits); w: 1/area (float)
@@ -99,7 +102,12 @@ inline constexpr int kGradientRefShift = 12;
 // E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). kIZ: the three vertex depths in
 // attribute order.
 inline constexpr int kIA = 0, kIB = 3, kIC = 6, kIZ = 9;
-static_assert(kIZ + 3 <= 2 * (kTexels - kInts));
+static_assert(kIZ + 3 <= 2 * (kVaryingTexels - kInts));
+// Gradient planes (kFlagColourGradients; geo::colourGradientPlanes): texel kGrad + ch holds
+// channel ch's gx (int64, xy: low word first) and gy (zw); channels 0–3 primary RGBA, 4–6
+// secondary RGB.
+inline constexpr int kGrad = 15;
+static_assert(kGrad >= kVaryingTexels && kGrad + 7 <= kTexels);
 }  // namespace tri
 
 // Return false and set err for keys the generator cannot express (e.g. framebuffer fetch

@@ -67,10 +67,12 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
         area = -area;
         flags |= T::kFlagSwapped;
     }
+    s64 A[3], B[3];
     for (int i = 0; i < 3; ++i) {
         const geo::ScreenVertex& a = *v[(i + 1) % 3];
         const geo::ScreenVertex& b = *v[(i + 2) % 3];
         const s64 dx = s64(b.x) - a.x, dy = s64(b.y) - a.y;
+        A[i] = -dy, B[i] = dx;
         putI(r, T::kIA + i, -dy);
         putI(r, T::kIB + i, dx);
         putI(r, T::kIC + i, dy * a.x - dx * a.y);
@@ -107,13 +109,19 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
     }
     if (!colConst) flags |= T::kFlagColorVaries;
     if (!secConst) flags |= T::kFlagSecVaries;
-    // Colour gradient planes (rasterTriangle's setupGradients): the shader forms them from the
-    // colours, the edge coefficients and the reference vertex.
-    if (rp.colourGradients && (!colConst || !secConst)) {
-        const int ref = geo::colourGradientReference(o);
-        flags |= T::kFlagColourGradients | (u32(ref) << T::kGradientRefShift);
-        putU32(r, T::kQ, 3, u32(o[ref]->x));
-        putU32(r, T::kRecipW, 3, u32(o[ref]->y));
+    // Colour gradient planes (rasterTriangle's setupGradients), made once per triangle here as
+    // there: the shader steps each channel from the reference vertex (a zero-area triangle has
+    // none; the shader's weights draw it).
+    if (rp.colourGradients && (!colConst || !secConst) && area > 0) {
+        const geo::GradientPlanes g = geo::colourGradientPlanes(o, A, B, (flags & T::kFlagSwapped) != 0, area);
+        flags |= T::kFlagColourGradients | (u32(g.ref) << T::kGradientRefShift);
+        putU32(r, T::kQ, 3, u32(o[g.ref]->x));
+        putU32(r, T::kRecipW, 3, u32(o[g.ref]->y));
+        for (int ch = 0; ch < 7; ++ch) {
+            const u64 gx = u64(g.gx[ch]), gy = u64(g.gy[ch]);
+            putU32(r, T::kGrad + ch, 0, u32(gx)), putU32(r, T::kGrad + ch, 1, u32(gx >> 32));
+            putU32(r, T::kGrad + ch, 2, u32(gy)), putU32(r, T::kGrad + ch, 3, u32(gy >> 32));
+        }
     }
 
     // Fog is interpolated unless fog is off or no vertex is fogged (then the byte is 255).
