@@ -124,6 +124,7 @@ public:
         sourceRange(st, first, count, e.begin, e.end);
         markPages(e.begin, e.end);
         e.clut = usesClut(st);
+        spans_.push_back({e.begin, e.end, e.clut, &e});
         e.lastUse = clock_;
         ++stats_.builds;
         return {e, Use::Build};
@@ -145,18 +146,19 @@ public:
         }
         const u64 begin = Memory::drawingAddress(addr), end = begin + size;
         if (!pagesMarked(begin, end)) return;  // no entry's source there
-        for (auto& kv : entries_)
-            if (kv.second.begin < end && begin < kv.second.end) kv.second.suspect = true;
+        for (const Span& sp : spans_)
+            if (sp.begin < end && begin < sp.end) sp.entry->suspect = true;
     }
     // Palette RAM was reloaded (CMD_CLOAD): the palette formats' texels may have changed.
     void clutChanged() {
-        for (auto& kv : entries_)
-            if (kv.second.clut) kv.second.suspect = true;
+        for (const Span& sp : spans_)
+            if (sp.clut) sp.entry->suspect = true;
     }
     template <class OnDrop>
     void clear(OnDrop&& onDrop) {
         for (auto& kv : entries_) onDrop(kv.second);
         entries_.clear();
+        spans_.clear();
         bytes_ = 0;
         pages_.reset();
     }
@@ -183,6 +185,9 @@ private:
             entries_.erase(it);
             ++stats_.evicted;
         }
+        // The spans of the entries left (entries never move: the map's nodes are stable).
+        spans_.clear();
+        for (auto& kv : entries_) spans_.push_back({kv.second.begin, kv.second.end, kv.second.clut, &kv.second});
     }
 
     // Which 64 KiB pages of drawing addresses hold some entry's source bytes, so that a write to
@@ -203,8 +208,16 @@ private:
         return false;
     }
 
+    // Every entry's source range with the entry, contiguous: a write walks these, not the map.
+    struct Span {
+        u32 begin, end;
+        bool clut;
+        Entry* entry;
+    };
+
     Budget budget_;
     std::bitset<kPages> pages_;
+    std::vector<Span> spans_;
     std::unordered_map<TextureKey, Entry, TextureKeyHash> entries_;
     size_t bytes_ = 0;
     u64 clock_ = 0;
