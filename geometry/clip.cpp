@@ -36,7 +36,7 @@ bool discardPrimitive(const TransformState& ts, const ClipVertex* const* v, int 
     int nearCount = 0, farCount = 0;
     for (int i = 0; i < n; ++i) {
         if (!v[i]->valid || v[i]->outside) return true;
-        const int side = depthSide(*v[i]);
+        const int side = v[i]->side;  // depthSide, made by projectToScreen
         nearCount += side < 0;
         farCount += side > 0;
     }

@@ -22,7 +22,8 @@ int depthSide(const ClipVertex& v);
 // Strictly behind the near clip plane z = −w: the part that near clipping removes.
 inline bool beyondNear(const ClipVertex& v) { return v.clip[2] < -v.clip[3]; }
 
-// The ge-rules.md §8.5 discard decision for a primitive of n (1–3) transformed, non-through vertices.
+// The ge-rules.md §8.5 discard decision for a primitive of n (1–3) transformed, non-through vertices
+// (their ClipVertex::side, which projectToScreen sets).
 bool discardPrimitive(const TransformState& ts, const ClipVertex* const* v, int n);
 
 // Point on segment a→b at parameter t (clip space; colours with 8-bit weights as the GE's

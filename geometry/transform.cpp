@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "geometry/clip.h"
 #include "geometry/texture_size.h"
 
 namespace ge::geo {
@@ -74,6 +75,13 @@ void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
     // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
     if (anyExp255(m, 9) || anyExp255(p, 3)) pointRows<3, geTerm>(m, p, out);
     else pointRows<3, finiteTerm>(m, p, out);
+}
+
+float mulPointRow3x4(const float m[12], const float p[3], int r) {
+    // Row r of mulPoint3x4: the same operations in the same order.
+    if (anyExp255(m, 9) || anyExp255(p, 3))
+        return (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
+    return (finiteTerm(m[r], p[0]) + finiteTerm(m[3 + r], p[1])) + (finiteTerm(m[6 + r], p[2]) + m[9 + r]);
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
@@ -267,6 +275,7 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck) {
     v.sv.y = ts.sprite ? spriteTo16(ys, ts.offY16) : to16(ys, ts.offY16);
     v.sv.z = depthToInt(zs);
     v.sv.w = w;
+    v.side = s8(depthSide(v));
 }
 
 void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVertex& out) {
@@ -305,9 +314,12 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     // made from the combined matrix, lighting (world), fog (view Z). The products are the same
     // when they are made; skipping them changes nothing else.
     float world[3] = {}, viewPos[3] = {};
-    const bool needView = (!ts.combinedClip && !ts.worldToClip) || (ts.fog && ts.fogFixed < 0);
+    const bool clipFromView = !ts.combinedClip && !ts.worldToClip;
+    const bool fogZ = ts.fog && ts.fogFixed < 0;
+    const bool needView = clipFromView || fogZ;
     if (needView || !ts.combinedClip || ts.lighting) mulPoint3x4(ts.world, model, world);
-    if (needView) mulPoint3x4(ts.view, world, viewPos);
+    if (clipFromView) mulPoint3x4(ts.view, world, viewPos);
+    else if (fogZ) viewPos[2] = mulPointRow3x4(ts.view, world, 2);  // fog reads only view Z
     if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
     else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
     else mulPoint4x4(ts.proj, viewPos, out.clip);

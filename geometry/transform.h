@@ -27,6 +27,9 @@ struct ClipVertex {
     // screen Z outside [0, 65536)): a primitive using it is dropped.
     bool outside = false;
     bool valid = true;             // false: unreadable memory or no position (dropped, ge-rules.md §8.11)
+    // Beyond the near (−1) or far (+1) side of the depth range, or 0 (clip.h depthSide of clip[]):
+    // set by projectToScreen, once per vertex, for the discard rule of each primitive using it.
+    s8 side = 0;
 };
 
 // Per-draw constants derived once from GeState.
@@ -98,6 +101,8 @@ void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck);
 
 // 3×4 (GE element order, ge-rules.md §3.4) times (x, y, z, 1) and the 3×3 part times a direction.
 void mulPoint3x4(const float m[12], const float in[3], float out[3]);
+// Row r (0–2) of mulPoint3x4 alone, bit for bit.
+float mulPointRow3x4(const float m[12], const float in[3], int r);
 void mulDir3x4(const float m[12], const float in[3], float out[3]);
 void mulPoint4x4(const float m[16], const float in[3], float out[4]);
 

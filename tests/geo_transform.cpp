@@ -364,6 +364,7 @@ TEST(GeoClip, DiscardRules) {
     auto cv = [&](float x, float y, float z, float w) {
         ClipVertex c;
         c.clip[0] = x, c.clip[1] = y, c.clip[2] = z, c.clip[3] = w;
+        c.side = s8(depthSide(c));  // as projectToScreen sets it
         return c;
     };
     const ClipVertex in1 = cv(1, 1, 0, 1), in2 = cv(2, 1, 0.5f, 1), nearV = cv(1, 2, -1.5f, 1), farV = cv(1, 2, 1.5f, 1);
