@@ -45,7 +45,22 @@ void convertRows16(const u8* src, u32 width, u32 height, u32 stride, u32* dst) {
         for (u32 x = 0; x < width; ++x) out[x] = Decode(readLE16(row + 2 * x));
     }
 }
+template <u16 (*Encode)(u32)>
+void encodeRow16(const u32* src, u32 width, u8* dst) {
+    for (u32 x = 0; x < width; ++x) writeLE16(dst + 2 * x, Encode(src[x]));
+}
 }  // namespace
+
+void convertFromRGBA8888(const u32* src, GeBufferFormat fmt, u32 width, u8* dst) {
+    switch (fmt) {
+    case GE_FORMAT_565: encodeRow16<encode5650>(src, width, dst); break;
+    case GE_FORMAT_5551: encodeRow16<encode5551>(src, width, dst); break;
+    case GE_FORMAT_4444: encodeRow16<encode4444>(src, width, dst); break;
+    case GE_FORMAT_8888:
+        for (u32 x = 0; x < width; ++x) writeLE32(dst + 4 * x, src[x]);
+        break;
+    }
+}
 
 void convertToRGBA8888(const u8* src, GeBufferFormat fmt, u32 width, u32 height, u32 stridePixels, u32* dst) {
     switch (fmt) {

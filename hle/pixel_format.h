@@ -37,6 +37,9 @@ u16 encodePixel16(u32 rgba, GeBufferFormat fmt);  // GE_FORMAT_8888: returns 0
 // src holds height rows of stridePixels pixels (the last row needs only width pixels); dst receives
 // width*height pixels, row-major, tightly packed.
 void convertToRGBA8888(const u8* src, GeBufferFormat fmt, u32 width, u32 height, u32 stridePixels, u32* dst);
+// The other way for one row of `width` pixels: RGBA8888 (R in the low byte) stored as `fmt`
+// (16-bit formats truncate: encode5650 …; 8888 as it is), little-endian.
+void convertFromRGBA8888(const u32* src, GeBufferFormat fmt, u32 width, u8* dst);
 
 // Bytes per pixel of a frame-buffer format (2 or 4).
 inline u32 bytesPerPixel(GeBufferFormat fmt) { return fmt == GE_FORMAT_8888 ? 4 : 2; }

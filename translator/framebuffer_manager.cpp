@@ -298,13 +298,8 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
             const u32 avail = mem_.validSize(rowAddr, u32(w) * bpp) / bpp;
             const u8* src = mem_.ptr(rowAddr, std::max<u32>(avail * bpp, 1));
             if (!src || avail == 0) continue;
-            u32* dst = &pixels_[size_t(y) * size_t(w)];
-            if (t.fmt == GE_FORMAT_8888) {
-                for (u32 x = 0; x < avail; ++x) dst[x] = readLE32(src + 4 * x);
-            } else {
-                // Stored form = what a GE read expands to (bit replication, docs/ge-rules.md §8.8).
-                for (u32 x = 0; x < avail; ++x) dst[x] = decodePixel16(readLE16(src + 2 * x), t.fmt);
-            }
+            // Stored form = what a GE read expands to (bit replication, docs/ge-rules.md §8.8).
+            convertToRGBA8888(src, t.fmt, avail, 1, 0, &pixels_[size_t(y) * size_t(w)]);
         }
         if (scale_ == 1) {
             gl.BindTexture(GL_TEXTURE_2D, t.tex);
@@ -533,13 +528,8 @@ void FramebufferManager::writeBack(Target& t, u32 lo, u32 hi) {
             const u32 avail = mem_.validSize(rowAddr, count * bpp) / bpp;
             u8* dst = mem_.ptr(rowAddr, std::max<u32>(avail * bpp, 1));
             if (!dst || avail == 0) continue;
-            const u32* src = &pixels_[size_t(y) * size_t(w) + first];
-            if (t.fmt == GE_FORMAT_8888) {
-                for (u32 x = 0; x < avail; ++x) writeLE32(dst + 4 * x, src[x]);
-            } else {
-                // Truncation keeps the stored high bits exactly (ge-rules.md §8.8).
-                for (u32 x = 0; x < avail; ++x) writeLE16(dst + 2 * x, encodePixel16(src[x], t.fmt));
-            }
+            // Truncation keeps the stored high bits exactly (ge-rules.md §8.8).
+            convertFromRGBA8888(&pixels_[size_t(y) * size_t(w) + first], t.fmt, avail, dst);
         }
     } else {
         depthPixels_.resize(size_t(w) * size_t(h));
