@@ -37,17 +37,18 @@ u16 encodePixel16(u32 c, GeBufferFormat fmt) {
 }
 
 namespace {
+// size_t indices: with a 32-bit index (whose arithmetic wraps) GCC does not vectorise the rows.
 template <u32 (*Decode)(u16)>
 void convertRows16(const u8* src, u32 width, u32 height, u32 stride, u32* dst) {
     for (u32 y = 0; y < height; ++y) {
         const u8* row = src + size_t(y) * stride * 2;
         u32* out = dst + size_t(y) * width;
-        for (u32 x = 0; x < width; ++x) out[x] = Decode(readLE16(row + 2 * x));
+        for (size_t x = 0; x < width; ++x) out[x] = Decode(readLE16(row + 2 * x));
     }
 }
 template <u16 (*Encode)(u32)>
 void encodeRow16(const u32* src, u32 width, u8* dst) {
-    for (u32 x = 0; x < width; ++x) writeLE16(dst + 2 * x, Encode(src[x]));
+    for (size_t x = 0; x < width; ++x) writeLE16(dst + 2 * x, Encode(src[x]));
 }
 }  // namespace
 
@@ -57,7 +58,7 @@ void convertFromRGBA8888(const u32* src, GeBufferFormat fmt, u32 width, u8* dst)
     case GE_FORMAT_5551: encodeRow16<encode5551>(src, width, dst); break;
     case GE_FORMAT_4444: encodeRow16<encode4444>(src, width, dst); break;
     case GE_FORMAT_8888:
-        for (u32 x = 0; x < width; ++x) writeLE32(dst + 4 * x, src[x]);
+        for (size_t x = 0; x < width; ++x) writeLE32(dst + 4 * x, src[x]);
         break;
     }
 }
@@ -71,7 +72,7 @@ void convertToRGBA8888(const u8* src, GeBufferFormat fmt, u32 width, u32 height,
         for (u32 y = 0; y < height; ++y) {
             const u8* row = src + size_t(y) * stridePixels * 4;
             u32* out = dst + size_t(y) * width;
-            for (u32 x = 0; x < width; ++x) out[x] = readLE32(row + 4 * x);
+            for (size_t x = 0; x < width; ++x) out[x] = readLE32(row + 4 * x);
         }
         break;
     }
