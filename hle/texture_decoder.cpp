@@ -54,7 +54,7 @@ void decodeRows16(const u8* src, u32 pitch, u32 w, u32 h, u32* out) {
     for (u32 y = 0; y < h; ++y) {
         const u8* row = src + size_t(y) * pitch;
         u32* o = out + size_t(y) * w;
-        for (u32 x = 0; x < w; ++x) o[x] = Decode(readLE16(row + 2 * x));
+        for (size_t x = 0; x < w; ++x) o[x] = Decode(readLE16(row + 2 * x));
     }
 }
 
@@ -70,7 +70,7 @@ void decodeLinear(const GeState& st, int level, GeTexFormat fmt, const u8* src, 
         for (u32 y = 0; y < h; ++y) {
             const u8* row = src + size_t(y) * pitch;
             u32* o = out + size_t(y) * w;
-            for (u32 x = 0; x < w; ++x) o[x] = readLE32(row + 4 * x);
+            for (size_t x = 0; x < w; ++x) o[x] = readLE32(row + 4 * x);
         }
         return;
     default: break;
