@@ -115,9 +115,8 @@ std::string recFlag(u32 f) { return "((" + recTexel(tri::kHeader) + ".x & " + st
 // interpolated attribute uses (rasterTriangle's coverage test, orderWeights, interpolateF).
 void emitExactEdges(std::string& s) {
     const std::string hdr = recTexel(tri::kHeader);
-    s += "flat in uvec4 v_rec[" + std::to_string(tri::kVaryingTexels) + "];\n"
-         "flat in int v_recBase;\n"
-         "uniform usamplerBuffer u_tris;\n";
+    s += "flat in uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n"
+         "uniform usamplerBuffer " + std::string(kGradientsUniform) + ";\n";
     s += "int64_t g_cx, g_cy;\n"
          "vec3 g_w;\n";  // edge weights of the sample point in attribute order
     // Edge function i at drawing position (cx, cy) (1/16 units): rasterTriangle's e_i.
@@ -175,7 +174,7 @@ void emitExactDepthColor(std::string& s) {
          "  return ivec4(clamp(roundEven(v), 0.0, 255.0));\n"
          "}\n";
     // Gradient planes (geo::colourGradientPlanes, raster.cpp colourFromGradients): channel ch's
-    // gx, gy from the record's texel kGrad + first + ch; the value
+    // gx, gy from texel first + ch of the triangle's planes; the value
     // floor((4096·c_ref + gx·dx + gy·dy) / 4096) from the reference vertex, kept to 0–255.
     const std::string hdr = recTexel(tri::kHeader);
     s += "ivec4 gradColor(uvec3 pc, int first) {\n"
@@ -185,7 +184,8 @@ void emitExactDepthColor(std::string& s) {
          "  ivec4 cr = bytes4(r == 0 ? pc.x : (r == 1 ? pc.y : pc.z));\n"
          "  ivec4 outc;\n"
          "  for (int ch = 0; ch < 4; ++ch) {\n"
-         "    uvec4 g = texelFetch(u_tris, v_recBase + " + std::to_string(tri::kGrad) + " + min(first + ch, 6));\n"
+         "    uvec4 g = texelFetch(" + std::string(kGradientsUniform) + ", int(" + recTexel(tri::kClipW) + ".w) * " +
+             std::to_string(tri::kGradTexels) + " + min(first + ch, 6));\n"
          "    int64_t gx = packInt2x32(ivec2(g.xy)), gy = packInt2x32(ivec2(g.zw));\n"
          "    int64_t q = (int64_t(cr[ch]) * int64_t(4096) + gx * dx + gy * dy) >> 12;\n"
          "    outc[ch] = q < int64_t(0) ? 0 : (q > int64_t(255) ? 255 : int(q));\n"
@@ -886,12 +886,10 @@ bool generateVertexShader(const VsKey& key, const HostCaps& caps, std::string& o
         s += "layout(location = 0) in vec3 a_pos;\n"
              "uniform vec2 u_ndcScale;\n"
              "uniform usamplerBuffer u_tris;\n"
-             "flat out uvec4 v_rec[" + std::to_string(tri::kVaryingTexels) + "];\n"
-             "flat out int v_recBase;\n"
+             "flat out uvec4 v_rec[" + std::to_string(tri::kTexels) + "];\n"
              "void main() {\n"
              "  int base = (gl_VertexID / 3) * " + std::to_string(tri::kTexels) + ";\n"
-             "  for (int i = 0; i < " + std::to_string(tri::kVaryingTexels) + "; ++i) v_rec[i] = texelFetch(u_tris, base + i);\n"
-             "  v_recBase = base;\n"
+             "  for (int i = 0; i < " + std::to_string(tri::kTexels) + "; ++i) v_rec[i] = texelFetch(u_tris, base + i);\n"
              "  gl_Position = vec4(a_pos.x * u_ndcScale.x - 1.0, a_pos.y * u_ndcScale.y - 1.0, 0.0, 1.0);\n"
              "}\n";
         out = std::move(s);

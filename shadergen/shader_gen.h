@@ -48,9 +48,11 @@ inline constexpr const char* kClut = "u_clut";              // ivec2: CLUT shift
 }  // namespace uniform
 
 inline constexpr int kAttrPos = 0, kAttrColor = 1, kAttrColor2 = 2, kAttrTex = 3, kAttrFog = 4;
-inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2, kUnitTris = 3, kUnitClut = 5;  // 4: hw_vertex.h kUnitVertexBytes
+inline constexpr int kUnitTex = 0, kUnitDstColor = 1, kUnitDstDepth = 2, kUnitTris = 3, kUnitClut = 5,
+                     kUnitGradients = 6;  // 4: hw_vertex.h kUnitVertexBytes
 inline constexpr const char* kClutTexUniform = "u_clutTex";  // usampler2D 256×1: palette per masked index
 inline constexpr const char* kTrisUniform = "u_tris";  // usamplerBuffer of triangle records
+inline constexpr const char* kGradientsUniform = "u_grads";  // usamplerBuffer of gradient planes (tri::kGradTexels each)
 
 // Exact interpolation (HostCaps::exactInterp): every GL triangle has a record of kTexels RGBA32UI
 // texels in the buffer texture u_tris, at index gl_VertexID / 3 (translator/tri_setup.h fills
@@ -60,10 +62,7 @@ inline constexpr const char* kTrisUniform = "u_tris";  // usamplerBuffer of tria
 // software rasteriser's arithmetic (geometry/raster.cpp rasterTriangle: int64 depth plane,
 // single-precision attribute sums over float edge weights in the reference's vertex order).
 namespace tri {
-// Texels per record; the first kVaryingTexels travel from the vertex shader to the fragment
-// shader as flat varyings, the rest the fragment shader fetches where it needs them.
-inline constexpr int kTexels = 22;
-inline constexpr int kVaryingTexels = 15;
+inline constexpr int kTexels = 15;
 // Triangles ("o" = attribute order: in0, in1, in2, or in2, in1, in0 for negative area).
 inline constexpr int kHeader = 0;     // x: kind | flags, y: fog byte, z: lod (float bits), w: W (float bits)
 inline constexpr int kFog = 1;        // xyz: fog factor of o[i] (float bits); w: 1/area (float)
@@ -73,7 +72,7 @@ inline constexpr int kS = 4;          // xyz: s of o[i]; w: level-0 width (float
 inline constexpr int kT = 5;          // xyz: t of o[i]; w: level-0 height (float)
 inline constexpr int kQ = 6;          // xyz: q of o[i]; w: gradient reference x (kFlagColourGradients)
 inline constexpr int kRecipW = 7;     // xyz: 1/w of o[i] (1 in through mode); w: gradient reference y
-inline constexpr int kClipW = 8;      // xyz: w of o[i]
+inline constexpr int kClipW = 8;      // xyz: w of o[i]; w: gradient planes index (kFlagColourGradients)
 inline constexpr int kInts = 9;       // 12 int64 (2 per texel, low word first), see kI*
 // Rectangles (rasterRectangle): texture coordinates as running single-precision sums from the
 // first covered pixel (kRectBox.xy), one column-pair step per two columns added along the row to
@@ -102,12 +101,12 @@ inline constexpr int kGradientRefShift = 12;
 // E_i = A_i·(16x + o) + B_i·(16y + o) + C_i (o: sample offset). kIZ: the three vertex depths in
 // attribute order.
 inline constexpr int kIA = 0, kIB = 3, kIC = 6, kIZ = 9;
-static_assert(kIZ + 3 <= 2 * (kVaryingTexels - kInts));
-// Gradient planes (kFlagColourGradients; geo::colourGradientPlanes): texel kGrad + ch holds
+static_assert(kIZ + 3 <= 2 * (kTexels - kInts));
+// Gradient planes (kFlagColourGradients; geo::colourGradientPlanes), in a buffer of their own
+// (only such triangles have them; kClipW.w is the index): texel index·kGradTexels + ch holds
 // channel ch's gx (int64, xy: low word first) and gy (zw); channels 0–3 primary RGBA, 4–6
 // secondary RGB.
-inline constexpr int kGrad = 15;
-static_assert(kGrad >= kVaryingTexels && kGrad + 7 <= kTexels);
+inline constexpr int kGradTexels = 7;
 }  // namespace tri
 
 // Return false and set err for keys the generator cannot express (e.g. framebuffer fetch

@@ -253,6 +253,13 @@ void GlRendererImpl::flush() {
                        geo_.records.data(), GL_STREAM_DRAW);
         gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
         gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
+        if (!geo_.gradients.empty()) {
+            gl_.BindBuffer(GL_TEXTURE_BUFFER, gradientBuf_);
+            gl_.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(geo_.gradients.size() * sizeof(GradientRecord)),
+                           geo_.gradients.data(), GL_STREAM_DRAW);
+            gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitGradients));
+            gl_.BindTexture(GL_TEXTURE_BUFFER, gradientTex_);
+        }
         gl_.ActiveTexture(GL_TEXTURE0);
     }
     const GLenum mode = GL_TRIANGLES;

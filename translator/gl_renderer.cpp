@@ -21,6 +21,10 @@ namespace ge::gl {
 
 namespace {
 
+// The host's bindings of every unit the translator uses are kept (gl_host_state.h).
+static_assert(shadergen::kUnitGradients < kHostUnits && shadergen::kUnitClut < kHostUnits &&
+              shadergen::kUnitVertexBytes < kHostUnits);
+
 shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
     // Hardware mode rasterises natively: attributes interpolated by GL (the float path).
     shadergen::HostCaps c = caps.hostCaps(opt.baseline, opt.floatInterpolation || opt.mode == GlMode::Hw);
@@ -101,6 +105,13 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
         gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
         gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
         gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, recordBuf_);
+        gl_.GenBuffers(1, &gradientBuf_);
+        gl_.BindBuffer(GL_TEXTURE_BUFFER, gradientBuf_);
+        gl_.BufferData(GL_TEXTURE_BUFFER, sizeof(GradientRecord), nullptr, GL_STREAM_DRAW);
+        gl_.GenTextures(1, &gradientTex_);
+        gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitGradients));
+        gl_.BindTexture(GL_TEXTURE_BUFFER, gradientTex_);
+        gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, gradientBuf_);
         gl_.ActiveTexture(GL_TEXTURE0);
     }
 }
@@ -117,6 +128,8 @@ GlRendererImpl::~GlRendererImpl() {
     gl_.DeleteVertexArrays(1, &vao_);
     if (recordTex_) gl_.DeleteTextures(1, &recordTex_);
     if (recordBuf_) gl_.DeleteBuffers(1, &recordBuf_);
+    if (gradientTex_) gl_.DeleteTextures(1, &gradientTex_);
+    if (gradientBuf_) gl_.DeleteBuffers(1, &gradientBuf_);
     if (snapColor_) gl_.DeleteTextures(1, &snapColor_);
     if (snapDepth_) gl_.DeleteTextures(1, &snapDepth_);
     if (snapFbo_) gl_.DeleteFramebuffers(1, &snapFbo_);

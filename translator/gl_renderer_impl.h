@@ -135,6 +135,7 @@ private:
     std::unique_ptr<Presenter> presenter_;
     int hostDepth_ = 1;
     GLuint recordBuf_ = 0, recordTex_ = 0;
+    GLuint gradientBuf_ = 0, gradientTex_ = 0;  // the records' gradient planes (tri_setup.h)
     std::unordered_map<u64, GLuint> palettes_;  // paletteTexture
     GlStats stats_;
     std::string lastError_;

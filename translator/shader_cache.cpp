@@ -232,6 +232,8 @@ void ProgramCache::lookupUniforms(Program& p) {
     if (p.dstDepth >= 0) gl.Uniform1i(p.dstDepth, shadergen::kUnitDstDepth);
     const GLint tris = loc(shadergen::kTrisUniform);
     if (tris >= 0) gl.Uniform1i(tris, shadergen::kUnitTris);
+    const GLint grads = loc(shadergen::kGradientsUniform);
+    if (grads >= 0) gl.Uniform1i(grads, shadergen::kUnitGradients);
     const GLint clutTex = loc(shadergen::kClutTexUniform);
     if (clutTex >= 0) gl.Uniform1i(clutTex, shadergen::kUnitClut);
     const GLint vtx = loc(shadergen::hwuniform::kVertexBytes);

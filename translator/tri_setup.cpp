@@ -48,8 +48,11 @@ void putConstAttributes(TriRecord& r, u16 z, const u8 color[4], const u8 seconda
 
 }  // namespace
 
-void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
-                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& r) {
+bool hasGradients(const TriRecord& r) { return (r.w[T::kHeader * 4] & T::kFlagColourGradients) != 0; }
+u32& gradientIndex(TriRecord& r) { return r.w[T::kClipW * 4 + 3]; }
+
+bool packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
+                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& r, GradientRecord& grad) {
     std::memset(&r, 0, sizeof r);
     u32 flags = T::kKindTriangle;
     if (rp.through) flags |= T::kFlagThrough;
@@ -119,8 +122,8 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
         putU32(r, T::kRecipW, 3, u32(o[g.ref]->y));
         for (int ch = 0; ch < 7; ++ch) {
             const u64 gx = u64(g.gx[ch]), gy = u64(g.gy[ch]);
-            putU32(r, T::kGrad + ch, 0, u32(gx)), putU32(r, T::kGrad + ch, 1, u32(gx >> 32));
-            putU32(r, T::kGrad + ch, 2, u32(gy)), putU32(r, T::kGrad + ch, 3, u32(gy >> 32));
+            u32* t = &grad.w[4 * ch];
+            t[0] = u32(gx), t[1] = u32(gx >> 32), t[2] = u32(gy), t[3] = u32(gy >> 32);
         }
     }
 
@@ -131,6 +134,7 @@ void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, con
         for (int i = 0; i < 3; ++i) putF32(r, T::kFog, i, o[i]->fog);
     }
     putU32(r, T::kHeader, 0, flags);
+    return (flags & T::kFlagColourGradients) != 0;
 }
 
 bool packRectangle(const geo::RasterParams& rp, const geo::ScreenVertex& v0, const geo::ScreenVertex& v1,

@@ -22,10 +22,20 @@ namespace ge::gl {
 struct TriRecord {
     u32 w[shadergen::tri::kTexels * 4];
 };
+// A triangle's colour gradient planes (shadergen tri::kGradTexels), kept apart from the records:
+// only triangles under RasterParams::colourGradients with a Gouraud colour have them.
+struct GradientRecord {
+    u32 w[shadergen::tri::kGradTexels * 4];
+};
+// The record's gradient planes index (tri::kClipW.w), valid when the record has the flag.
+bool hasGradients(const TriRecord& r);
+u32& gradientIndex(TriRecord& r);
 
 // Triangle (in0, in1, in2) with flat-shading colour `prov`, as geo::rasterTriangle sees it.
-void packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
-                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& out);
+// True when the triangle steps its colours by gradient planes: they are in `grad`, and the
+// caller sets gradientIndex(out) to where it keeps them.
+bool packTriangle(const geo::RasterParams& rp, const geo::ScreenVertex& in0, const geo::ScreenVertex& in1,
+                  const geo::ScreenVertex& in2, const geo::ScreenVertex& prov, TriRecord& out, GradientRecord& grad);
 // Rectangle from two corners, as geo::rasterRectangle sees it (both GL triangles get this record).
 // False when it covers no pixel; else `box` gets the covered pixels, inclusive (x1, y1, x2, y2):
 // the GL quad must cover exactly those.

@@ -135,7 +135,11 @@ void VertexPipeline::emitTriangle(const geo::ScreenVertex& a, const geo::ScreenV
     GlVertex grown[6];
     int n = growTriangle(g, grown);
     TriRecord rec;
-    packTriangle(rp, a, b, c, prov, rec);
+    GradientRecord grad;
+    if (packTriangle(rp, a, b, c, prov, rec, grad)) {
+        gradientIndex(rec) = u32(out_->gradients.size());
+        out_->gradients.push_back(grad);
+    }
     PrimBounds bb = boundsOf(grown, n);
     if (n == 6) {
         // A needle-thin triangle's bevelled hexagon, drawn as a fan, had sliver triangles (two

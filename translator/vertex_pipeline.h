@@ -53,21 +53,29 @@ struct Geometry {
     std::vector<GlVertex> tris;  // 3 per triangle
     std::vector<PrimBounds> triBounds;
     std::vector<TriRecord> records;  // 1 per triangle with VertexPipeline::setRecords (exact interpolation)
+    std::vector<GradientRecord> gradients;  // the records' gradient planes (gradientIndex)
     void clear() {
         tris.clear();
         triBounds.clear();
         records.clear();
+        gradients.clear();
     }
     void append(const Geometry& g) {
         tris.insert(tris.end(), g.tris.begin(), g.tris.end());
         triBounds.insert(triBounds.end(), g.triBounds.begin(), g.triBounds.end());
+        const size_t first = records.size();
+        const u32 base = u32(gradients.size());
         records.insert(records.end(), g.records.begin(), g.records.end());
+        gradients.insert(gradients.end(), g.gradients.begin(), g.gradients.end());
+        if (base && !g.gradients.empty())
+            for (size_t i = first; i < records.size(); ++i)
+                if (hasGradients(records[i])) gradientIndex(records[i]) += base;
     }
     bool empty() const { return tris.empty(); }
     size_t triangles() const { return triBounds.size(); }
     size_t reservedBytes() const {
         return tris.capacity() * sizeof(GlVertex) + triBounds.capacity() * sizeof(PrimBounds) +
-               records.capacity() * sizeof(TriRecord);
+               records.capacity() * sizeof(TriRecord) + gradients.capacity() * sizeof(GradientRecord);
     }
     // After a flush: hands the arrays' memory back when it is far more than `triangles` GL
     // triangles need (a huge batch once must not keep its peak resident for the rest of the run).
@@ -77,6 +85,7 @@ struct Geometry {
         std::vector<GlVertex>().swap(tris);
         std::vector<PrimBounds>().swap(triBounds);
         std::vector<TriRecord>().swap(records);
+        std::vector<GradientRecord>().swap(gradients);
     }
     static constexpr size_t kTrimFloor = 16384;  // GL triangles kept without question (6 MB exact)
 };
