@@ -98,20 +98,18 @@ GlRendererImpl::GlRendererImpl(Memory& mem, const GlOptions& opt, std::unique_pt
     if (caps_.exactInterp) {
         // Triangle records (tri_setup.h) in a buffer texture on their own unit; the buffer's
         // contents are replaced per flush.
-        gl_.GenBuffers(1, &recordBuf_);
-        gl_.BindBuffer(GL_TEXTURE_BUFFER, recordBuf_);
-        gl_.BufferData(GL_TEXTURE_BUFFER, sizeof(TriRecord), nullptr, GL_STREAM_DRAW);
-        gl_.GenTextures(1, &recordTex_);
-        gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitTris));
-        gl_.BindTexture(GL_TEXTURE_BUFFER, recordTex_);
-        gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, recordBuf_);
-        gl_.GenBuffers(1, &gradientBuf_);
-        gl_.BindBuffer(GL_TEXTURE_BUFFER, gradientBuf_);
-        gl_.BufferData(GL_TEXTURE_BUFFER, sizeof(GradientRecord), nullptr, GL_STREAM_DRAW);
-        gl_.GenTextures(1, &gradientTex_);
-        gl_.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitGradients));
-        gl_.BindTexture(GL_TEXTURE_BUFFER, gradientTex_);
-        gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, gradientBuf_);
+        // The gradient planes of the records that have them likewise, on a unit of their own.
+        auto bufferTexture = [&](GLuint& buf, GLuint& tex, GLsizeiptr size, int unit) {
+            gl_.GenBuffers(1, &buf);
+            gl_.BindBuffer(GL_TEXTURE_BUFFER, buf);
+            gl_.BufferData(GL_TEXTURE_BUFFER, size, nullptr, GL_STREAM_DRAW);
+            gl_.GenTextures(1, &tex);
+            gl_.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+            gl_.BindTexture(GL_TEXTURE_BUFFER, tex);
+            gl_.TexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32UI, buf);
+        };
+        bufferTexture(recordBuf_, recordTex_, sizeof(TriRecord), shadergen::kUnitTris);
+        bufferTexture(gradientBuf_, gradientTex_, sizeof(GradientRecord), shadergen::kUnitGradients);
         gl_.ActiveTexture(GL_TEXTURE0);
     }
 }
