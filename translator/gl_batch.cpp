@@ -16,6 +16,31 @@ bool overlaps(const PrimBounds& a, const PrimBounds& b) {
     return a.x0 <= b.x1 && b.x0 <= a.x1 && a.y0 <= b.y1 && b.y0 <= a.y1;
 }
 
+// The end of the group of primitives from `first` on that never touch the same pixel (at most 256,
+// a piece of a convex shape joining the previous one): each reads the destination as it was
+// before the group, which is exact because no member sees another's write. `area` gets the
+// group's bounds clipped to the scissor `sc` (empty: nothing of it is drawn).
+size_t groupEnd(const std::vector<PrimBounds>& bounds, size_t first, const Rect& sc, std::vector<size_t>& members,
+                Rect& area) {
+    members.clear();
+    area = Rect{};
+    size_t end = first;
+    for (; end < bounds.size(); ++end) {
+        const PrimBounds& b = bounds[end];
+        bool clash = false;
+        if (!(b.joinPrev && end > first))
+            for (size_t m : members)
+                if (overlaps(bounds[m], b)) {
+                    clash = true;
+                    break;
+                }
+        if (clash || members.size() >= 256) break;
+        members.push_back(end);
+        area.add(Rect{std::max(b.x0, sc.x0), std::max(b.y0, sc.y0), std::min(b.x1, sc.x1), std::min(b.y1, sc.y1)});
+    }
+    return end;
+}
+
 // True when the depth buffer rows a draw needs share bytes with colour target t (linear VRAM).
 bool depthOverlapsColor(const Target& t, u32 depthAddr, u32 depthStride, int rows) {
     const u64 begin = Memory::drawingAddress(depthAddr);
@@ -274,28 +299,13 @@ void GlRendererImpl::flush() {
         ++stats_.glDrawCalls;
         for (const PrimBounds& b : bounds) drawn.add(clipRect(b));
     } else {
-        // Groups of primitives that never touch the same pixel: each reads the destination
-        // as it was before the group, which is exact because no member sees another's write.
+        // Groups of primitives that never touch the same pixel (groupEnd).
         const size_t n = bounds.size();
         size_t first = 0;
         std::vector<size_t> members;
         while (first < n) {
-            members.clear();
             Rect area;
-            size_t end = first;
-            for (; end < n; ++end) {
-                const PrimBounds& b = bounds[end];
-                bool clash = false;
-                if (!(b.joinPrev && end > first))
-                    for (size_t m : members)
-                        if (overlaps(bounds[m], b)) {
-                            clash = true;
-                            break;
-                        }
-                if (clash || members.size() >= 256) break;
-                members.push_back(end);
-                area.add(clipRect(b));
-            }
+            const size_t end = groupEnd(bounds, first, sc, members, area);
             if (!area.empty()) {
                 if (useBarrier_) {
                     gl_.TextureBarrier();
