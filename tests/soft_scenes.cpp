@@ -8,8 +8,18 @@
 // regenerate the images with
 //   GE2GL_UPDATE_EXPECTED=1 ./build/tests/test_soft --gtest_filter='Scenes*'
 // and review the differences before committing them.
+// One rule of the profile is the host's: sseVectorArithmetic normalises the lighting half vector
+// with the host's own rsqrtss, as PPSSPP's x86 build does (geometry/lighting.cpp), and Intel and
+// AMD processors give different approximations (within the documented 1.5·2^-12). The images
+// were made on an Intel host; on an AMD host (seen: EPYC, 1,470 pixels of lit_textured_skinned
+// one step apart) the pixels that rule decides may differ. So each scene is also rendered with
+// the rule off (1/sqrt, the same everywhere): wherever the two renders agree, the image must be
+// matched exactly; where they do not (the rule's pixels), the host's render may be one step
+// away from the image.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 
@@ -47,8 +57,30 @@ TEST(Scenes, SoftwareModelMatchesExpectedImages) {
             ASSERT_TRUE(tools::readImage(ref.string(), img, err)) << err;
             ASSERT_EQ(img.width, 480);
             ASSERT_EQ(img.height, 272);
-            size_t differing = 0;
-            for (size_t i = 0; i < img.rgba.size(); ++i) differing += (img.rgba[i] & 0xFFFFFF) != (out.frame.rgba[i] & 0xFFFFFF);
+            tools::RenderOptions portable = opt;
+            portable.accuracy = "ppsspp-sseVectorArithmetic";
+            tools::RenderOutput alt;
+            ASSERT_TRUE(tools::renderDumpFile(e.path().string(), portable, alt, err)) << err;
+            auto apart = [](u32 a, u32 b) {
+                int d = 0;
+                for (int c = 0; c < 24; c += 8) d = std::max(d, std::abs(int((a >> c) & 0xFF) - int((b >> c) & 0xFF)));
+                return d;
+            };
+            // A pixel the rule decides: the image (Intel's rsqrtss) or this host's render differs
+            // from the rule-off render there. Those are the pixels the switch moved when it was
+            // added (1,866, docs/accuracy.md): the count of the first kind is the same on every host.
+            size_t differing = 0, hostRule = 0, imageRule = 0;
+            for (size_t i = 0; i < img.rgba.size(); ++i) {
+                const u32 want = img.rgba[i], got = out.frame.rgba[i], off = alt.frame.rgba[i];
+                imageRule += apart(want, off) != 0;
+                if (apart(want, got) == 0) continue;
+                if ((apart(got, off) != 0 || apart(want, off) != 0) && apart(want, got) <= 1) ++hostRule;
+                else ++differing;
+            }
+            EXPECT_LE(imageRule, 1866u);
+            if (hostRule)
+                std::printf("%s: %zu pixels one step from the image where the host's rsqrtss decides (%zu moved by the rule)\n",
+                            name.c_str(), hostRule, imageRule);
             EXPECT_EQ(differing, 0u) << "threads=" << threads;
         }
     }
