@@ -219,6 +219,61 @@ TEST(DrawSelect, SkipAndOnlyChangeKnownPixels) {
     fs::remove_all(t);
 }
 
+// A draw left out still had its register changes: the next draw that reaches the backend is
+// drawn with them. Draw 1 fills the screen blue (a rectangle, not a clear, so that the backends'
+// draw paths see it); the green channel is then write-protected (PMSK1) for
+// draw 2, a red rectangle, and draw 3, a green one, which changes no register. With draw 2 left
+// out, draw 3 must still find green protected: its rectangle comes out black (R and B from the
+// source's 0, G kept from the blue's 0), not green; the backends' caches that follow the
+// packets' dirty register groups (the draw front end's transform state, the GL key cache) must
+// see the groups of the draw they never got.
+TEST(DrawSelect, ALeftOutDrawsRegisterChangesStillApply) {
+    const fs::path t = tmpDir("dirty");
+    Memory mem;
+    dump::DumpWriter writer("GE2GL0001");
+    DumpRecorder rec(mem, writer);
+    GeState init;
+    init.reset();
+    for (int op = 0; op < 256; ++op) init.regs[op] = u32(op) << 24;
+    rec.begin(init, 0x04000000, 512, GE_FORMAT_8888);
+    ListBuilder b(&mem);
+    b.attach(&rec);
+    b.drawBuffer(GE_FORMAT_8888, 0, 512);
+    b.scissor(0, 0, 480, 272);
+    b.region(0, 0, 480, 272);
+    b.pixelMask(0, 0);
+    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    for (auto [r, c] : {std::pair{Rect{0, 0, 480, 272}, kBlue}, std::pair{kRedRect, kRed}, std::pair{kGreenRect, kGreen}}) {
+        if (c == kRed) b.pixelMask(0x00FF00, 0);
+        BuildVertex v[2];
+        v[0].x = float(r.x0), v[0].y = float(r.y0), v[0].color = c;
+        v[1].x = float(r.x1), v[1].y = float(r.y1), v[1].color = c;
+        const auto data = packVertices(vtype, v, 2);
+        b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+    }
+    b.finish();
+    b.attach(nullptr);
+    rec.end(0x04000000, 512, GE_FORMAT_8888);
+    const fs::path dump = t / "masked.ppdmp";
+    std::string err;
+    ASSERT_TRUE(writer.save(dump.string(), err)) << err;
+    for (const char* backend : {"--backend soft", "--backend gl", "--backend gl --gl-mode hw"}) {
+        for (const char* sel : {"", "--skip 2"}) {
+            const fs::path png = t / "f.png";
+            fs::remove(png);
+            CliRun r = run("render " + quote(dump.string()) + " " + backend + " -o " + quote(png.string()) + " " + sel);
+            ASSERT_EQ(r.code, 0) << backend << " " << sel << ": " << r.out;
+            tools::Image img;
+            ASSERT_TRUE(tools::readImage(png.string(), img, err)) << err;
+            const std::string what = std::string(backend) + " " + sel;
+            expectRect(img, kGreenRect, 0xFF000000u, what);
+            if (*sel) expectRect(img, kRedRect, kBlue, what, false);
+            else expectRect(img, kRedRect, kRed, what);
+        }
+    }
+    fs::remove_all(t);
+}
+
 // ---- shards and merge (library) ----
 
 TEST(Batch, ShardsTakeEveryNthDumpInNameOrder) {

@@ -39,13 +39,14 @@ public:
     std::function<void(u32 addr, u32 size, bool transfer)> afterWrite;
 
     void drawPrim(const PrimPacket& p) override {
-        draw("prim", p.prim, p.count, [&] { inner_.drawPrim(p); });
+        draw("prim", p.prim, p.count, p, [&](const PrimPacket& q) { inner_.drawPrim(q); });
     }
     void drawPatch(const PatchPacket& p) override {
-        draw(p.spline ? "spline" : "bezier", GE_PRIM_TRIANGLES, p.ucount * p.vcount, [&] { inner_.drawPatch(p); });
+        draw(p.spline ? "spline" : "bezier", GE_PRIM_TRIANGLES, p.ucount * p.vcount, p,
+             [&](const PatchPacket& q) { inner_.drawPatch(q); });
     }
     void drawImmediate(const ImmPacket& p) override {
-        draw("immediate", p.prim, u32(p.vertices.size()), [&] { inner_.drawImmediate(p); });
+        draw("immediate", p.prim, u32(p.vertices.size()), p, [&](const ImmPacket& q) { inner_.drawImmediate(q); });
     }
     void blockTransfer(const TransferPacket& t, Memory& mem) override {
         inner_.blockTransfer(t, mem);
@@ -68,17 +69,32 @@ public:
     void setPixelBudget(u64 pixels) override { inner_.setPixelBudget(pixels); }
 
 private:
-    template <class F>
-    void draw(const char* kind, GePrimType prim, u32 vertices, F&& f) {
+    // A packet's `dirty` names the register groups changed since the previous packet; a left-out
+    // draw's groups go with the next draw that reaches the backend, whose caches would otherwise
+    // keep state from before the left-out draw's changes.
+    template <class P, class F>
+    void draw(const char* kind, GePrimType prim, u32 vertices, const P& p, F&& f) {
         const u64 n = ++draws_;
         last_ = DrawInfo{};
         last_.draw = n, last_.kind = kind, last_.prim = prim, last_.vertices = vertices;
-        if (keep && !keep(n)) return;
-        f();
+        if (keep && !keep(n)) {
+            skippedDirty_ |= p.dirty;
+            return;
+        }
+        if (skippedDirty_ & ~p.dirty) {
+            P q = p;
+            q.dirty |= skippedDirty_;
+            skippedDirty_ = 0;
+            f(q);
+        } else {
+            skippedDirty_ = 0;
+            f(p);
+        }
         if (after) after(n);
     }
     Renderer& inner_;
     u64 draws_ = 0;
+    u32 skippedDirty_ = 0;
     DrawInfo last_;
 };
 
