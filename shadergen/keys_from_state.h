@@ -25,6 +25,7 @@ struct DrawFlags {
     // implicitAlphaNonZeroTest): the translator's profile.
     geo::AccuracyProfile accuracy = geo::AccuracyProfile::psp();
     static DrawFlags fromState(const GeState& st, const geo::AccuracyProfile& acc);
+    bool operator==(const DrawFlags&) const = default;
 };
 
 // The fixed-function GL state that goes with a key.

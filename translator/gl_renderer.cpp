@@ -138,7 +138,7 @@ GlRendererImpl::~GlRendererImpl() {
 // Geometry is built before the draw's setup: the setup depends on the primitives' colours
 // (the reference's skipped alpha test, geometry/reference_rules.h referenceSkipsAlphaTest).
 void GlRendererImpl::drawPrim(const PrimPacket& p) {
-    pipeline_.noteDirty(p.dirty);
+    noteDirty(p.dirty);
     ++stats_.draws;
     if (gpuVertices_ && drawPrimOnGpu(p)) return;
     const GeState& st = *p.state;
@@ -149,7 +149,7 @@ void GlRendererImpl::drawPrim(const PrimPacket& p) {
 }
 
 void GlRendererImpl::drawPatch(const PatchPacket& p) {
-    pipeline_.noteDirty(p.dirty);
+    noteDirty(p.dirty);
     ++stats_.draws;
     if (gpuVertices_ && drawPatchOnGpu(p)) return;
     const GeState& st = *p.state;
@@ -190,7 +190,7 @@ void GlRendererImpl::addDraw() {
 }
 
 void GlRendererImpl::drawImmediate(const ImmPacket& p) {
-    pipeline_.noteDirty(p.dirty);
+    noteDirty(p.dirty);
     ++stats_.draws;
     if (p.vertices.empty()) return;
     const GeState& st = *p.state;

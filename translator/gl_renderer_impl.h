@@ -79,6 +79,21 @@ private:
     // gl_batch.cpp
     bool beginDraw(const GeState& st, const shadergen::DrawFlags& flags);
     bool makeSetup(const GeState& st, const shadergen::DrawFlags& flags, DrawSetup& s);
+    // The keys and fragment uniforms of a draw, made again only when they may differ (setupFor).
+    struct KeyCache {
+        bool valid = false;
+        const GeState* state = nullptr;
+        shadergen::DrawFlags flags{};
+        shadergen::PipelineKeys keys{};
+        shadergen::FsUniforms u{};
+        bool clutHashed = false;  // clutHash holds hashBytes of the state's CLUT
+        u64 clutHash = 0;
+    };
+    KeyCache& setupFor(const GeState& st, const shadergen::DrawFlags& flags);
+    void noteDirty(u32 groups) {
+        setupDirty_ |= groups;
+        pipeline_.noteDirty(groups);
+    }
     struct GpuDrawState {
         shadergen::DrawFlags flags{};
         bool dstTexture = false, texture = false, fog = false, cull = false;
@@ -127,6 +142,8 @@ private:
     const GeState* drawState_ = nullptr;  // the current draw's state and flags (startDraw)
     shadergen::DrawFlags drawFlags_{};
     DrawSetup batchSetup_;
+    KeyCache keyCache_;
+    u32 setupDirty_ = DIRTY_ALL;  // GeDirty groups changed since keyCache_ was made
     GlStateCache state_;  // what GL holds (gl_state_cache.h)
     u64 generation_ = 1;
     GLuint vao_ = 0, vbo_ = 0;
