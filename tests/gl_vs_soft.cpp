@@ -428,7 +428,7 @@ void immediateClearModeScene(ListBuilder& b) {
 // vertices, each after one group changed. A 16x16 rectangle of two triangles without a vertex
 // colour (so MAC colours it) at the top left; OFFSETX moved by 32 pixels (TRANSFORM) draws it at
 // the top right, still red; MAC green (LIGHTING) then turns the right one green. A draw that kept
-// the old transform state would land left, or stay red.
+// the old transform state would land left, or stay red. Then a fragment-side change alone (below).
 void dirtyGroupsScene(ListBuilder& b) {
     frameSetup(b);
     b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
@@ -450,6 +450,18 @@ void dirtyGroupsScene(ListBuilder& b) {
     b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
     b.materialAmbient(0xFF00FF00);
     b.drawArrayData(GE_PRIM_TRIANGLES, vtype, 6, nullptr, bytes.data());
+    // Two through-mode rectangles at (0, 44)–(16, 60), colour and place from the vertices alone:
+    // red, then white after PMSK1 protects green (BLEND, the only group that changes between
+    // them): magenta. A draw that kept the first one's keys (the GL key cache) would leave white.
+    const u32 tv = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex r[2];
+    r[0].x = 0, r[0].y = 44, r[1].x = 16, r[1].y = 60;
+    for (u32 c : {0xFF0000FFu, 0xFFFFFFFFu}) {
+        if (c == 0xFFFFFFFFu) b.pixelMask(0x00FF00, 0);
+        r[0].color = r[1].color = c;
+        const auto rect = packVertices(tv, r, 2);
+        b.drawArrayData(GE_PRIM_RECTANGLES, tv, 2, nullptr, rect.data());
+    }
 }
 
 TEST(GlVsSoft, EachDrawSeesTheRegisterGroupsChangedBeforeIt) {
@@ -459,6 +471,7 @@ TEST(GlVsSoft, EachDrawSeesTheRegisterGroupsChangedBeforeIt) {
         EXPECT_EQ(rgb(40, 8), 0x00FF00u);
         EXPECT_EQ(rgb(24, 8), 0u);
         EXPECT_EQ(rgb(8, 40), 0u);
+        EXPECT_EQ(rgb(8, 52), 0xFF00FFu);
     });
 }
 
