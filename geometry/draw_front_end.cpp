@@ -90,19 +90,25 @@ bool DrawFrontEnd::decode(const Memory& mem, const GeState& st, const PrimPacket
     if (indices_.empty()) return true;
     const bool skin = reader.hasWeights() && !reader.through();
     bool anyBad = false;
+    u32 lo = ~0u, hi = 0;
+    for (u32 i : indices_) lo = std::min(lo, i), hi = std::max(hi, i);
+    // The dense range's bytes checked and looked up once (VertexReader::span); a range that is
+    // not all valid memory is read vertex by vertex, which finds the unreadable ones.
+    const u8* range = nullptr;
     auto process = [&](u32 index, ClipVertex& out) {
         DecodedVertex dv;
-        const bool ok = reader.read(p.vertexAddr, index, dv);
+        bool ok = true;
+        if (range) reader.decodeAt(range + size_t(index - lo) * reader.stride(), dv);
+        else ok = reader.read(p.vertexAddr, index, dv);
         anyBad |= !ok;
         if (ok && skin) applySkinning(st, p.vtype, dv);
         transformVertex(ts_, dv, out);
         out.valid = ok && reader.hasPosition();  // no position: dropped (docs/ge-rules.md §8.11)
     };
-    u32 lo = ~0u, hi = 0;
-    for (u32 i : indices_) lo = std::min(lo, i), hi = std::max(hi, i);
     const size_t first = cverts_.size();
     if (u64(hi) - lo < u64(p.count) * 2 + 64) {
         // Dense index range: each vertex of the range that is used, transformed once.
+        range = reader.span(p.vertexAddr, lo, hi - lo + 1);
         used_.assign(size_t(hi - lo) + 1, 0);
         for (u32 i : indices_) used_[i - lo] = 1;
         cverts_.resize(first + used_.size());

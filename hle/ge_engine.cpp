@@ -326,9 +326,9 @@ void GeEngine::latchVertexAttributes(const PrimPacket& p) {
     if (!r.hasPosition() || (!uv && !r.hasNormal())) return;
     u32 last = p.count - 1;
     if (r.indexSize()) {
-        if (!r.readIndices(p.indexAddr, p.count, latchIndices_) || latchIndices_.empty()) return;
-        const auto [lo, hi] = std::minmax_element(latchIndices_.begin(), latchIndices_.end());
-        last = u64(p.count) > u64(*hi) - *lo + 1 ? *hi : latchIndices_.back();
+        u32 lo = 0, hi = 0, back = 0;
+        if (!r.indexBounds(p.indexAddr, p.count, lo, hi, back)) return;
+        last = u64(p.count) > u64(hi) - lo + 1 ? hi : back;
     }
     DecodedVertex v;
     if (!r.read(p.vertexAddr, last, v)) return;

@@ -40,12 +40,6 @@ VertexReader::VertexReader(const Memory& mem, const GeState& st, u32 vtype)
 
 u32 VertexReader::stride() const { return stride_; }
 const VertexLayout& VertexReader::layout() const { return layout_; }
-bool VertexReader::hasColor() const { return ((vtype_ >> 2) & 7) >= 4; }  // CT 1–3: invalid, no colour (ge-rules.md §5.1)
-bool VertexReader::hasNormal() const { return ((vtype_ >> 5) & 3) != 0; }
-bool VertexReader::hasUV() const { return (vtype_ & 3) != 0; }
-bool VertexReader::hasWeights() const { return ((vtype_ >> 9) & 3) != 0; }
-bool VertexReader::hasPosition() const { return ((vtype_ >> 7) & 3) != 0; }
-bool VertexReader::through() const { return (vtype_ >> 23) & 1; }
 u32 VertexReader::morphCount() const { return morphs_; }
 u32 VertexReader::weightCount() const { return hasWeights() ? ((vtype_ >> 14) & 7) + 1 : 0; }
 u32 VertexReader::indexSize() const {
@@ -167,23 +161,36 @@ inline u8 colorToU8(float c) {
 }  // namespace
 
 bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
+    const u8* p = span(base, index, 1);
+    if (!p) {
+        out = DecodedVertex{};
+        return false;
+    }
+    decodeAt(p, out);
+    return true;
+}
+
+const u8* VertexReader::span(u32 base, u32 first, u32 count) const {
+    if (count == 0) return nullptr;
+    // Morphing is not executed in through mode (manual §7.1): only the first copy is read.
+    const u32 copies = through() ? 1 : morphs_;
+    const u64 addr = u64(base) + u64(first) * stride_;
+    const u64 need = u64(count - 1) * stride_ + u64(layout_.size) * copies;
+    if (addr + need > 0x100000000ull || need > 0xFFFFFFFFull) return nullptr;
+    return mem_.ptr(u32(addr), u32(need));
+}
+
+void VertexReader::decodeAt(const u8* p, DecodedVertex& out) const {
     out = DecodedVertex{};
     const bool thru = through();
-    // Morphing is not executed in through mode (manual §7.1): only the first copy is used.
     const u32 copies = thru ? 1 : morphs_;
-    const u64 addr = u64(base) + u64(index) * stride_;
-    const u32 need = u32(layout_.size) * copies;
-    if (addr + need > 0x100000000ull) return false;
-    const u8* p = mem_.ptr(u32(addr), need);
-    if (!p) return false;
-
     if (copies == 1) {
         // One copy: decoded straight into `out` (the same values as through RawVertex below).
         decodeRaw(p, vtype_, layout_, thru, out);
         if (!hasUV()) std::copy(st_.latchUV, st_.latchUV + 2, out.uv);
         if (!hasNormal()) std::copy(st_.latchNormal, st_.latchNormal + 3, out.nrm);
         if (!hasColor()) materialColor(out);
-        return true;
+        return;
     }
     RawVertex sum;
     {
@@ -211,7 +218,6 @@ bool VertexReader::read(u32 base, u32 index, DecodedVertex& out) const {
     } else {
         materialColor(out);
     }
-    return true;
 }
 
 // No vertex colour: material ambient colour and alpha (ge-rules.md §5.5).
@@ -246,6 +252,35 @@ bool VertexReader::readIndices(u32 iaddr, u32 count, std::vector<u32>& out) cons
         for (u32 i = 0; i < count; ++i) out[i] = readLE32(p + 4 * i);
         break;
     }
+    return true;
+}
+
+bool VertexReader::indexBounds(u32 iaddr, u32 count, u32& lo, u32& hi, u32& last) const {
+    const u32 isz = indexSize();
+    if (count == 0) return false;
+    if (isz == 0) {
+        lo = 0, hi = last = count - 1;
+        return true;
+    }
+    const u64 bytes = u64(count) * isz;
+    if (u64(iaddr) + bytes > 0x100000000ull) return false;
+    const u8* p = mem_.ptr(iaddr, u32(bytes));
+    if (!p) return false;
+    u32 mn = ~0u, mx = 0;
+    auto scan = [&](auto read) {
+        for (u32 i = 0; i < count; ++i) {
+            const u32 v = read(i);
+            mn = std::min(mn, v);
+            mx = std::max(mx, v);
+        }
+        last = read(count - 1);
+    };
+    switch (isz) {
+    case 1: scan([p](u32 i) { return u32(p[i]); }); break;
+    case 2: scan([p](u32 i) { return u32(readLE16(p + 2 * i)); }); break;
+    default: scan([p](u32 i) { return readLE32(p + 4 * i); }); break;
+    }
+    lo = mn, hi = mx;
     return true;
 }
 

@@ -30,12 +30,12 @@ public:
 
     u32 stride() const;  // bytes per vertex including morph copies
     const VertexLayout& layout() const;
-    bool hasColor() const;
-    bool hasNormal() const;
-    bool hasUV() const;
-    bool hasWeights() const;
-    bool hasPosition() const;
-    bool through() const;
+    bool hasColor() const { return ((vtype_ >> 2) & 7) >= 4; }  // CT 1–3: invalid, no colour (ge-rules.md §5.1)
+    bool hasNormal() const { return ((vtype_ >> 5) & 3) != 0; }
+    bool hasUV() const { return (vtype_ & 3) != 0; }
+    bool hasWeights() const { return ((vtype_ >> 9) & 3) != 0; }
+    bool hasPosition() const { return ((vtype_ >> 7) & 3) != 0; }
+    bool through() const { return (vtype_ >> 23) & 1; }
     u32 morphCount() const;   // 1..8
     u32 weightCount() const;  // 0 when there are no weights, else 1..8
     u32 indexSize() const;    // 0, 1, 2 or 4 bytes
@@ -44,8 +44,16 @@ public:
     // mode, every component incl. colour weighted by CMD_WEIGHTn). Returns false (out zeroed) if
     // the bytes are not valid memory.
     bool read(u32 base, u32 index, DecodedVertex& out) const;
+    // The bytes of vertices first … first + count − 1 of the array at `base` when they are all
+    // valid memory (null otherwise): a draw's index range is checked and looked up once, and each
+    // vertex decoded from it with decodeAt(span + k · stride()), which gives what read() gives.
+    const u8* span(u32 base, u32 first, u32 count) const;
+    void decodeAt(const u8* p, DecodedVertex& out) const;
     // Reads `count` indices at iaddr (u8/u16/u32 per IT); IT==0 gives 0..count-1. False on bad memory.
     bool readIndices(u32 iaddr, u32 count, std::vector<u32>& out) const;
+    // The smallest and largest of those indices and the last one, read in place (no copy).
+    // False on bad memory; with IT==0 the range 0..count-1.
+    bool indexBounds(u32 iaddr, u32 count, u32& lo, u32& hi, u32& last) const;
 
 private:
     void materialColor(DecodedVertex& out) const;
