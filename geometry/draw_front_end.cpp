@@ -131,7 +131,7 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
                          std::string* err) {
     pending_.clear();
     stripOdd_ = false;
-    TessOutput tess;
+    TessOutput& tess = tess_;
     if (!tessellatePatch(mem, st, p, acc_, tess, err)) {
         ++stats_.badDraws;
         return false;
@@ -156,6 +156,9 @@ bool DrawFrontEnd::patch(const Memory& mem, const GeState& st, const PatchPacket
     assemble(tess.prim, false);
     stripOdd_ = false;
     trimVertices();
+    // A patch's tessellation can be far larger than any PRIM: its arrays are not kept past it.
+    constexpr size_t kKeepTessVertices = size_t(1) << 17;
+    if (tess.verts.capacity() > kKeepTessVertices) tess = TessOutput{};
     return true;
 }
 

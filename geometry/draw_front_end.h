@@ -22,6 +22,7 @@
 #include "geometry/accuracy_profile.h"
 #include "geometry/assembly.h"
 #include "geometry/raster.h"
+#include "geometry/spline.h"
 #include "geometry/transform.h"
 #include "hle/ge_state.h"
 #include "hle/memory.h"
@@ -176,6 +177,7 @@ private:
     RectDetect rectDetect_;
 
     std::vector<ClipVertex> cverts_;
+    TessOutput tess_;  // patch(): kept between patches, trimmed past kKeepTessVertices
     std::vector<u32> indices_, seq_, keep_;
     std::vector<u8> used_;
     // PRIM type 7: the transformed vertices still open and the strip parity.

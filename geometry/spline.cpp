@@ -257,15 +257,18 @@ struct Surface {
 };
 
 void appendGridIndices(u32 base, u32 nu, u32 nv, u32 patchPrim, std::vector<u32>& idx) {
-    // nu × nv quads over a (nu+1) × (nv+1) vertex grid starting at `base`.
+    // nu × nv quads over a (nu+1) × (nv+1) vertex grid starting at `base`, six indices each,
+    // written in place (an insert per quad was 3.6 % of Pursuit Force's profile).
+    const size_t at = idx.size();
+    idx.resize(at + size_t(nu) * nv * 6);
+    u32* o = idx.data() + at;
+    const bool lines = patchPrim == 1;
     for (u32 j = 0; j < nv; ++j)
-        for (u32 i = 0; i < nu; ++i) {
+        for (u32 i = 0; i < nu; ++i, o += 6) {
             const u32 q0 = base + j * (nu + 1) + i, q1 = q0 + 1, q2 = q0 + nu + 1, q3 = q2 + 1;
-            if (patchPrim == 1) {
-                idx.insert(idx.end(), {q0, q2, q1, q3, q1, q2});
-            } else {
-                idx.insert(idx.end(), {q0, q2, q1, q1, q2, q3});
-            }
+            o[0] = q0, o[1] = q2, o[2] = q1;
+            if (lines) o[3] = q3, o[4] = q1, o[5] = q2;
+            else o[3] = q1, o[4] = q2, o[5] = q3;
         }
 }
 
