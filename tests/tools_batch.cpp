@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 
@@ -55,8 +56,19 @@ struct Rect {
 };
 constexpr Rect kRedRect{40, 30, 120, 100}, kGreenRect{300, 150, 420, 230};
 
-// Draw 1 clears the screen to blue, draw 2 is a red rectangle, draw 3 a green one.
-fs::path writeThreeDrawDump(const fs::path& dir) {
+// A through-mode rectangle of one colour.
+void drawRect(ListBuilder& b, const Rect& r, u32 c) {
+    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].x = float(r.x0), v[0].y = float(r.y0), v[0].color = c;
+    v[1].x = float(r.x1), v[1].y = float(r.y1), v[1].color = c;
+    const auto data = packVertices(vtype, v, 2);
+    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+}
+
+// A dump at `path` of an 8888 frame at VRAM 0 (stride 512, full-screen scissor, nothing
+// write-protected) and the draws `body` adds.
+fs::path writeDump(const fs::path& path, const std::function<void(ListBuilder&)>& body) {
     Memory mem;
     dump::DumpWriter writer("GE2GL0001");
     DumpRecorder rec(mem, writer);
@@ -70,23 +82,23 @@ fs::path writeThreeDrawDump(const fs::path& dir) {
     b.scissor(0, 0, 480, 272);
     b.region(0, 0, 480, 272);
     b.pixelMask(0, 0);
-    b.clear(CLEAR_COLOR, kBlue, 0);
-    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-    for (auto [r, c] : {std::pair{kRedRect, kRed}, std::pair{kGreenRect, kGreen}}) {
-        BuildVertex v[2];
-        v[0].x = float(r.x0), v[0].y = float(r.y0), v[0].color = c;
-        v[1].x = float(r.x1), v[1].y = float(r.y1), v[1].color = c;
-        const auto data = packVertices(vtype, v, 2);
-        b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
-    }
+    body(b);
     b.finish();
     b.attach(nullptr);
     rec.end(0x04000000, 512, GE_FORMAT_8888);
-    const fs::path path = dir / "three_draws.ppdmp";
     std::string err;
     EXPECT_TRUE(writer.save(path.string(), err)) << err;
     EXPECT_TRUE(rec.warnings().empty());
     return path;
+}
+
+// Draw 1 clears the screen to blue, draw 2 is a red rectangle, draw 3 a green one.
+fs::path writeThreeDrawDump(const fs::path& dir) {
+    return writeDump(dir / "three_draws.ppdmp", [](ListBuilder& b) {
+        b.clear(CLEAR_COLOR, kBlue, 0);
+        drawRect(b, kRedRect, kRed);
+        drawRect(b, kGreenRect, kGreen);
+    });
 }
 
 u32 px(const tools::Image& img, u32 x, u32 y) { return img.rgba[size_t(y) * img.width + x] | 0xFF000000u; }
@@ -229,34 +241,13 @@ TEST(DrawSelect, SkipAndOnlyChangeKnownPixels) {
 // see the groups of the draw they never got.
 TEST(DrawSelect, ALeftOutDrawsRegisterChangesStillApply) {
     const fs::path t = tmpDir("dirty");
-    Memory mem;
-    dump::DumpWriter writer("GE2GL0001");
-    DumpRecorder rec(mem, writer);
-    GeState init;
-    init.reset();
-    for (int op = 0; op < 256; ++op) init.regs[op] = u32(op) << 24;
-    rec.begin(init, 0x04000000, 512, GE_FORMAT_8888);
-    ListBuilder b(&mem);
-    b.attach(&rec);
-    b.drawBuffer(GE_FORMAT_8888, 0, 512);
-    b.scissor(0, 0, 480, 272);
-    b.region(0, 0, 480, 272);
-    b.pixelMask(0, 0);
-    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-    for (auto [r, c] : {std::pair{Rect{0, 0, 480, 272}, kBlue}, std::pair{kRedRect, kRed}, std::pair{kGreenRect, kGreen}}) {
-        if (c == kRed) b.pixelMask(0x00FF00, 0);
-        BuildVertex v[2];
-        v[0].x = float(r.x0), v[0].y = float(r.y0), v[0].color = c;
-        v[1].x = float(r.x1), v[1].y = float(r.y1), v[1].color = c;
-        const auto data = packVertices(vtype, v, 2);
-        b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
-    }
-    b.finish();
-    b.attach(nullptr);
-    rec.end(0x04000000, 512, GE_FORMAT_8888);
-    const fs::path dump = t / "masked.ppdmp";
+    const fs::path dump = writeDump(t / "masked.ppdmp", [](ListBuilder& b) {
+        drawRect(b, Rect{0, 0, 480, 272}, kBlue);
+        b.pixelMask(0x00FF00, 0);
+        drawRect(b, kRedRect, kRed);
+        drawRect(b, kGreenRect, kGreen);
+    });
     std::string err;
-    ASSERT_TRUE(writer.save(dump.string(), err)) << err;
     for (const char* backend : {"--backend soft", "--backend gl", "--backend gl --gl-mode hw"}) {
         for (const char* sel : {"", "--skip 2"}) {
             const fs::path png = t / "f.png";
