@@ -212,9 +212,9 @@ struct Surface {
         if (hasUV) foldInto(out.uv, 2);
         if (hasNormal) foldInto(out.nrm, 3);
         if (hasWeights) foldInto(out.weights, weightCount);
-        float col[4];
-        if (hasColor) foldInto(col, 4);
         if (hasColor) {
+            float col[4];
+            foldInto(col, 4);
             for (int c = 0; c < 4; ++c) {
                 // To nearest as PPSSPP's ToRGBA, or up as the PSP (AccuracyProfile::
                 // pspPatchColourRoundUp); a sum within 1/1024 above a whole number is that number
