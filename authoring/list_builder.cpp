@@ -264,6 +264,15 @@ void ListBuilder::clear(u32 flags, u32 color, u16 depth, u8 stencil) {
     cmd(GE_CMD_CMODE, 0);
 }
 
+void ListBuilder::fillRect(u32 x1, u32 y1, u32 x2, u32 y2, u32 abgr) {
+    constexpr u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
+    BuildVertex v[2];
+    v[0].x = float(x1), v[0].y = float(y1), v[1].x = float(x2), v[1].y = float(y2);
+    v[0].color = v[1].color = abgr;
+    const std::vector<u8> data = packVertices(vtype, v, 2);
+    drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
+}
+
 void ListBuilder::setMatrix(GeMatrix kind, const float m[16]) {
     if (kind == GeMatrix::Proj) {
         cmd(GE_CMD_PROJN, 0);

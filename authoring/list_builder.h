@@ -238,6 +238,10 @@ public:
     void drawArray(u32 prim, u32 vtype, u32 count, u32 indexAddr, u32 vertexAddr);
     // Same, placing host data in the arena first (indices may be null; their size follows vtype).
     void drawArrayData(u32 prim, u32 vtype, u32 count, const void* indices, const void* vertices);
+    // One through-mode rectangle (manual §4.4: PRIM RECTANGLES, two opposite corners; here 8888
+    // colour, 16-bit position, z 0) from (x1, y1) to (x2, y2), x2 and y2 exclusive, in one ABGR
+    // colour: the plain coloured box tests and examples draw.
+    void fillRect(u32 x1, u32 y1, u32 x2, u32 y2, u32 abgr);
     // VTYPE, [BASE, IADR], [BASE, VADR], BEZIER (v<<8 | u).
     void drawBezier(u32 vtype, u32 ucount, u32 vcount, u32 indexAddr, u32 vertexAddr);
     // VTYPE, [BASE, IADR], [BASE, VADR], SPLINE (vedge<<18 | uedge<<16 | v<<8 | u).

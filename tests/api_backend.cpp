@@ -32,11 +32,7 @@ uint32_t buildScene(std::vector<uint8_t>& ram, std::vector<uint8_t>& vram) {
     b.scissor(0, 0, 480, 272);
     b.region(0, 0, 480, 272);
     b.clear(ge::CLEAR_COLOR | ge::CLEAR_STENCIL, 0xFF202080, 0);  // ABGR
-    ge::BuildVertex v[2];
-    v[0].x = 100, v[0].y = 50, v[0].color = 0xFF00FF00;
-    v[1].x = 200, v[1].y = 150, v[1].color = 0xFF00FF00;
-    b.drawArrayData(ge::GE_PRIM_RECTANGLES, ge::vt::COL_8888 | ge::vt::POS_16 | ge::vt::THROUGH, 2, nullptr,
-                    ge::packVertices(ge::vt::COL_8888 | ge::vt::POS_16 | ge::vt::THROUGH, v, 2).data());
+    b.fillRect(100, 50, 200, 150, 0xFF00FF00);
     b.finish(0x77);
     return b.placeList();
 }

@@ -56,15 +56,7 @@ struct Rect {
 };
 constexpr Rect kRedRect{40, 30, 120, 100}, kGreenRect{300, 150, 420, 230};
 
-// A through-mode rectangle of one colour.
-void drawRect(ListBuilder& b, const Rect& r, u32 c) {
-    const u32 vtype = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-    BuildVertex v[2];
-    v[0].x = float(r.x0), v[0].y = float(r.y0), v[0].color = c;
-    v[1].x = float(r.x1), v[1].y = float(r.y1), v[1].color = c;
-    const auto data = packVertices(vtype, v, 2);
-    b.drawArrayData(GE_PRIM_RECTANGLES, vtype, 2, nullptr, data.data());
-}
+void fill(ListBuilder& b, const Rect& r, u32 c) { b.fillRect(r.x0, r.y0, r.x1, r.y1, c); }
 
 // A dump at `path` of an 8888 frame at VRAM 0 (stride 512, full-screen scissor, nothing
 // write-protected) and the draws `body` adds.
@@ -96,8 +88,8 @@ fs::path writeDump(const fs::path& path, const std::function<void(ListBuilder&)>
 fs::path writeThreeDrawDump(const fs::path& dir) {
     return writeDump(dir / "three_draws.ppdmp", [](ListBuilder& b) {
         b.clear(CLEAR_COLOR, kBlue, 0);
-        drawRect(b, kRedRect, kRed);
-        drawRect(b, kGreenRect, kGreen);
+        fill(b, kRedRect, kRed);
+        fill(b, kGreenRect, kGreen);
     });
 }
 
@@ -242,10 +234,10 @@ TEST(DrawSelect, SkipAndOnlyChangeKnownPixels) {
 TEST(DrawSelect, ALeftOutDrawsRegisterChangesStillApply) {
     const fs::path t = tmpDir("dirty");
     const fs::path dump = writeDump(t / "masked.ppdmp", [](ListBuilder& b) {
-        drawRect(b, Rect{0, 0, 480, 272}, kBlue);
+        b.fillRect(0, 0, 480, 272, kBlue);
         b.pixelMask(0x00FF00, 0);
-        drawRect(b, kRedRect, kRed);
-        drawRect(b, kGreenRect, kGreen);
+        fill(b, kRedRect, kRed);
+        fill(b, kGreenRect, kGreen);
     });
     std::string err;
     for (const char* backend : {"--backend soft", "--backend gl", "--backend gl --gl-mode hw"}) {

@@ -64,16 +64,6 @@ dump::Dump record(const std::function<void(ListBuilder&)>& build) {
     return w.dump();
 }
 
-constexpr u32 kThrough = vt::COL_8888 | vt::POS_16 | vt::THROUGH;
-
-void rect(ListBuilder& b, int x0, int y0, int x1, int y1, u32 abgr) {
-    BuildVertex v[2];
-    v[0].x = float(x0), v[0].y = float(y0), v[1].x = float(x1), v[1].y = float(y1);
-    v[0].color = v[1].color = abgr;
-    const auto bytes = packVertices(kThrough, v, 2);
-    b.drawArrayData(GE_PRIM_RECTANGLES, kThrough, 2, nullptr, bytes.data());
-}
-
 void save(const dump::Dump& d, const fs::path& p) {
     std::string err;
     ASSERT_TRUE(dump::saveDump(p.string(), d, err)) << err;
@@ -101,15 +91,15 @@ std::string slurp(const fs::path& p) {
 TEST(Blame, RanksTheWronglyBlendedDrawFirst) {
     auto scene = [](bool wrong) {
         return record([wrong](ListBuilder& b) {
-            rect(b, 10, 10, 200, 150, 0xFF0000FF);  // draw 2: opaque red
+            b.fillRect(10, 10, 200, 150, 0xFF0000FF);  // draw 2: opaque red
             b.enable(GE_CMD_ABE, true);
             // draw 3: translucent green over the red; the wrong dump adds instead of mixing
             b.blendFunc(BLEQ_ADD, 2, wrong ? 10 : 3, 0, wrong ? 0xFFFFFF : 0);
-            rect(b, 100, 60, 300, 200, 0x8000FF00);
+            b.fillRect(100, 60, 300, 200, 0x8000FF00);
             b.blendFunc(BLEQ_ADD, 2, 3);
-            rect(b, 320, 20, 460, 120, 0x80FF0000);  // draw 4: translucent blue, elsewhere
+            b.fillRect(320, 20, 460, 120, 0x80FF0000);  // draw 4: translucent blue, elsewhere
             b.enable(GE_CMD_ABE, false);
-            rect(b, 20, 210, 150, 260, 0xFF00FFFF);  // draw 5: opaque yellow
+            b.fillRect(20, 210, 150, 260, 0xFF00FFFF);  // draw 5: opaque yellow
         });
     };
     const fs::path t = tmpDir("blame");
@@ -168,7 +158,7 @@ TEST(Bisect, FindsTheChangedDrawAmongFiveHundred) {
                 const int x = (n * 37) % 460, y = (n * 53) % 256;
                 u32 c = 0xFF000000u | (u32(n) * 2654435761u & 0xFFFFFF);
                 if (n == changed) c ^= 0x000010;
-                rect(b, x, y, x + 12, y + 12, c);
+                b.fillRect(x, y, x + 12, y + 12, c);
             }
         });
     };
