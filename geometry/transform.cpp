@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "geometry/clip.h"
@@ -49,54 +50,126 @@ inline bool anyExp255(const float* v, int n) {
     return hit != 0;
 }
 
-// geTerm where neither factor has exponent 255: zero when either is zero or denormal, else the
-// IEEE product — the same value, without branches (a select).
-inline float finiteTerm(float a, float b) {
-    u32 ba, bb;
-    std::memcpy(&ba, &a, 4);
-    std::memcpy(&bb, &b, 4);
-    const float prod = a * b;
-    return ((ba & 0x7F800000u) && (bb & 0x7F800000u)) ? prod : 0.0f;
+// The common case, where no factor has exponent 255: geTerm is then the IEEE product, or zero
+// where either factor is zero or denormal — a select, done four rows at a time. A matrix column
+// (MatrixColumns) is four lanes and each lane does one row's operations in their order,
+// out_r = (t(m0r, p0) + t(m1r, p1)) + (t(m2r, p2) + m3r), so every row is bit-identical to geTerm
+// row by row (-ffp-contract=off keeps products and sums apart). GCC and Clang vector extensions: SSE on x86-64, NEON on AArch64. The scalar form, with the matrix
+// checked for exponent 255 at every vertex, was a fifth of Pursuit Force's per-draw profile
+// (three products per vertex, 90-200 instructions each).
+using F4 = float __attribute__((vector_size(16)));
+using I4 = std::int32_t __attribute__((vector_size(16)));
+constexpr std::int32_t kExpMask = 0x7F800000;
+
+inline F4 load4(const float* c) {
+    F4 v;
+    std::memcpy(&v, c, 16);
+    return v;
+}
+inline I4 load4i(const std::int32_t* c) {
+    I4 v;
+    std::memcpy(&v, c, 16);
+    return v;
 }
 
-// out_r = (t(m[r], p0) + t(m[R + r], p1)) + (t(m[2R + r], p2) + m[3R + r]) for R rows: the
-// point products below, with the term rule `Term`.
-template <int R, float (*Term)(float, float)>
-inline void pointRows(const float* m, const float p[3], float* out) {
-    for (int r = 0; r < R; ++r)
-        out[r] = (Term(m[r], p[0]) + Term(m[R + r], p[1])) + (Term(m[2 * R + r], p[2]) + m[3 * R + r]);
+// The rows of M·(p, 1) (translation true) or M·d (false) with geTerm row by row: where M or p
+// has an exponent-255 factor. Out of line, so the common case below stays a leaf.
+template <bool Translation>
+[[gnu::noinline]] F4 productSpecial(const MatrixColumns& m, const float p[3]) {
+    F4 v;
+    for (int r = 0; r < 4; ++r) {
+        const float t01 = geTerm(m.col[0][r], p[0]) + geTerm(m.col[1][r], p[1]);
+        const float t2 = geTerm(m.col[2][r], p[2]);
+        v[r] = Translation ? t01 + (t2 + m.col[3][r]) : t01 + t2;
+    }
+    return v;
 }
+
+// The same rows, four lanes at a time in the common case: each term is the IEEE product where
+// neither factor's exponent field is 0 (MatrixColumns::keep for the matrix element, keepP for the
+// coordinate), else +0.
+template <bool Translation>
+inline F4 product(const MatrixColumns& m, const float p[3]) {
+    const F4 P = {p[0], p[1], p[2], 0.0f};
+    const I4 e = (I4)P & kExpMask;
+    const I4 special = e == kExpMask;
+    if (m.special || (special[0] | special[1] | special[2])) [[unlikely]]
+        return productSpecial<Translation>(m, p);
+    const I4 keepP = e != 0;
+    const F4 t0 = (F4)((I4)(load4(m.col[0]) * __builtin_shufflevector(P, P, 0, 0, 0, 0)) & load4i(m.keep[0]) &
+                       __builtin_shufflevector(keepP, keepP, 0, 0, 0, 0));
+    const F4 t1 = (F4)((I4)(load4(m.col[1]) * __builtin_shufflevector(P, P, 1, 1, 1, 1)) & load4i(m.keep[1]) &
+                       __builtin_shufflevector(keepP, keepP, 1, 1, 1, 1));
+    const F4 t2 = (F4)((I4)(load4(m.col[2]) * __builtin_shufflevector(P, P, 2, 2, 2, 2)) & load4i(m.keep[2]) &
+                       __builtin_shufflevector(keepP, keepP, 2, 2, 2, 2));
+    return Translation ? (t0 + t1) + (t2 + load4(m.col[3])) : (t0 + t1) + t2;
+}
+
+inline void store3(F4 v, float out[3]) { out[0] = v[0], out[1] = v[1], out[2] = v[2]; }
 
 }  // namespace
 
-// The products take geTerm's branch-free form unless a factor has exponent 255 (rare: the
-// infinities and NaNs games leave in unused vertex components), which takes geTerm itself.
-void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
+void toColumns(const float* m, int rows, MatrixColumns& out) {
+    u32 special = 0;
+    for (int k = 0; k < 4; ++k)
+        for (int r = 0; r < 4; ++r) {
+            const float e = r < rows ? m[rows * k + r] : 0.0f;
+            out.col[k][r] = e;
+            u32 b;
+            std::memcpy(&b, &e, 4);
+            if (k == 3) continue;
+            special |= u32((b & 0x7F800000u) == 0x7F800000u);
+            out.keep[k][r] = (b & 0x7F800000u) ? -1 : 0;
+        }
+    out.special = special != 0;
+}
+
+// The products below take finiteTerms unless a factor has exponent 255 (rare: the infinities and
+// NaNs games leave in unused vertex components), which takes geTerm itself.
+void mulPoint3x4(const MatrixColumns& m, const float p[3], float out[3]) {
     // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
-    if (anyExp255(m, 9) || anyExp255(p, 3)) pointRows<3, geTerm>(m, p, out);
-    else pointRows<3, finiteTerm>(m, p, out);
+    store3(product<true>(m, p), out);
+}
+
+float mulPointRow3x4(const MatrixColumns& m, const float p[3], int r) {
+    // Row r of mulPoint3x4: the same operations in the same order (the other rows cost nothing
+    // more in the vector form).
+    return product<true>(m, p)[r];
+}
+
+void mulDir3x4(const MatrixColumns& m, const float d[3], float out[3]) {
+    // ((t0 + t1) + t2), no translation.
+    store3(product<false>(m, d), out);
+}
+
+void mulPoint4x4(const MatrixColumns& m, const float p[3], float out[4]) {
+    // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
+    const F4 v = product<true>(m, p);
+    std::memcpy(out, &v, 16);
+}
+
+void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
+    MatrixColumns c;
+    toColumns(m, 3, c);
+    mulPoint3x4(c, p, out);
 }
 
 float mulPointRow3x4(const float m[12], const float p[3], int r) {
-    // Row r of mulPoint3x4: the same operations in the same order.
-    if (anyExp255(m, 9) || anyExp255(p, 3))
-        return (geTerm(m[r], p[0]) + geTerm(m[3 + r], p[1])) + (geTerm(m[6 + r], p[2]) + m[9 + r]);
-    return (finiteTerm(m[r], p[0]) + finiteTerm(m[3 + r], p[1])) + (finiteTerm(m[6 + r], p[2]) + m[9 + r]);
+    MatrixColumns c;
+    toColumns(m, 3, c);
+    return mulPointRow3x4(c, p, r);
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
-    if (anyExp255(m, 9) || anyExp255(d, 3)) {
-        for (int r = 0; r < 3; ++r) out[r] = geTerm(m[r], d[0]) + geTerm(m[3 + r], d[1]) + geTerm(m[6 + r], d[2]);
-    } else {
-        for (int r = 0; r < 3; ++r)
-            out[r] = finiteTerm(m[r], d[0]) + finiteTerm(m[3 + r], d[1]) + finiteTerm(m[6 + r], d[2]);
-    }
+    MatrixColumns c;
+    toColumns(m, 3, c);
+    mulDir3x4(c, d, out);
 }
 
 void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
-    // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
-    if (anyExp255(m, 12) || anyExp255(p, 3)) pointRows<4, geTerm>(m, p, out);
-    else pointRows<4, finiteTerm>(m, p, out);
+    MatrixColumns c;
+    toColumns(m, 4, c);
+    mulPoint4x4(c, p, out);
 }
 
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold,
@@ -170,6 +243,10 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
             fold->valid = true;
         }
     }
+
+    toColumns(ts.world, 3, ts.worldCols);
+    toColumns(ts.view, 3, ts.viewCols);
+    toColumns(ts.combinedClip ? ts.worldViewProj : ts.worldToClip ? ts.viewProj : ts.proj, 4, ts.clipCols);
 
     const u32 map = st.TMAP_mode();
     ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (ge-rules.md §3.8)
@@ -317,12 +394,13 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     const bool clipFromView = !ts.combinedClip && !ts.worldToClip;
     const bool fogZ = ts.fog && ts.fogFixed < 0;
     const bool needView = clipFromView || fogZ;
-    if (needView || !ts.combinedClip || ts.lighting) mulPoint3x4(ts.world, model, world);
-    if (clipFromView) mulPoint3x4(ts.view, world, viewPos);
-    else if (fogZ) viewPos[2] = mulPointRow3x4(ts.view, world, 2);  // fog reads only view Z
-    if (ts.combinedClip) mulPoint4x4(ts.worldViewProj, model, out.clip);
-    else if (ts.worldToClip) mulPoint4x4(ts.viewProj, world, out.clip);
-    else mulPoint4x4(ts.proj, viewPos, out.clip);
+    // The products inline (mulPoint3x4, mulPointRow3x4, mulPoint4x4 with the draw's columns).
+    if (needView || !ts.combinedClip || ts.lighting) store3(product<true>(ts.worldCols, model), world);
+    if (clipFromView) store3(product<true>(ts.viewCols, world), viewPos);
+    else if (fogZ) viewPos[2] = product<true>(ts.viewCols, world)[2];  // fog reads only view Z
+    // clipCols: worldViewProj, viewProj or proj (makeTransformState), applied to its input.
+    const F4 clip = product<true>(ts.clipCols, ts.combinedClip ? model : ts.worldToClip ? world : viewPos);
+    std::memcpy(out.clip, &clip, sizeof clip);
 
     // Fog factor per vertex from view-space Z (ge-rules.md §3.9).
     if (!ts.fog) sv.fog = 1.0f;
@@ -332,7 +410,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
     // World-space normal for lighting and shade mapping, normalised; (0, 0, 1) without one.
     float worldNormal[3] = {0.0f, 0.0f, 1.0f};
     if (ts.hasNormal && (ts.lighting || ts.texMap == 2)) {
-        mulDir3x4(ts.world, normal, worldNormal);
+        store3(product<false>(ts.worldCols, normal), worldNormal);
         normalizeOr001(worldNormal, ts.sseNormalise);
     }
 

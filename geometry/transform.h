@@ -8,6 +8,7 @@
 // screen Z to 16 bits; per-vertex fog factor, lighting and texture-coordinate generation.
 // Through mode skips all of it: positions are drawing coordinates, texture coordinates texels.
 #pragma once
+#include <cstdint>
 #include "geometry/lighting.h"
 #include "geometry/raster.h"
 #include "hle/ge_state.h"
@@ -30,6 +31,16 @@ struct ClipVertex {
     // Beyond the near (−1) or far (+1) side of the depth range, or 0 (clip.h depthSide of clip[]):
     // set by projectToScreen, once per vertex, for the discard rule of each primitive using it.
     s8 side = 0;
+};
+
+// A matrix of the per-vertex products in column form: column k of a 3×4 (GE element order) or
+// 4×4 as four floats (a 3×4's fourth lane 0), and whether its linear part (columns 0–2) has an
+// element with exponent 255, where the GE's term rule leaves IEEE arithmetic (transform.cpp).
+// Made once per draw by makeTransformState, so a vertex's product is a few vector operations.
+struct MatrixColumns {
+    alignas(16) float col[4][4] = {};
+    alignas(16) std::int32_t keep[3][4] = {};  // −1 where col[k][r]'s exponent field is not 0
+    bool special = false;
 };
 
 // Per-draw constants derived once from GeState.
@@ -71,6 +82,9 @@ struct TransformState {
     // renderer transforms to world space and then applies view·proj folded into one 4×4 matrix.
     bool worldToClip = false;
     float viewProj[16] = {};
+    // world, view and the clip matrix transformVertex uses (worldViewProj, viewProj or proj) in
+    // column form, by makeTransformState.
+    MatrixColumns worldCols, viewCols, clipCols;
 };
 
 // `vtype` is the draw's CMD_VTYPE word; `hasColor` whether its format carries a colour;
@@ -100,10 +114,19 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
 void projectToScreen(const TransformState& ts, ClipVertex& v, bool rangeCheck);
 
 // 3×4 (GE element order, ge-rules.md §3.4) times (x, y, z, 1) and the 3×3 part times a direction.
+// Each term as the GE forms it (docs/ge-rules.md §1.2: a zero or denormal factor gives 0, exponent
+// 255 is an ordinary exponent); per row (t0 + t1) + (t2 + m_translation), or (t0 + t1) + t2.
 void mulPoint3x4(const float m[12], const float in[3], float out[3]);
 // Row r (0–2) of mulPoint3x4 alone, bit for bit.
 float mulPointRow3x4(const float m[12], const float in[3], int r);
 void mulDir3x4(const float m[12], const float in[3], float out[3]);
 void mulPoint4x4(const float m[16], const float in[3], float out[4]);
+// The same products with the matrix in column form (what transformVertex uses per vertex), and
+// the column form of a 3×4 (rows 3) or 4×4 (rows 4) matrix.
+void mulPoint3x4(const MatrixColumns& m, const float in[3], float out[3]);
+float mulPointRow3x4(const MatrixColumns& m, const float in[3], int r);
+void mulDir3x4(const MatrixColumns& m, const float in[3], float out[3]);
+void mulPoint4x4(const MatrixColumns& m, const float in[3], float out[4]);
+void toColumns(const float* m, int rows, MatrixColumns& out);
 
 }  // namespace ge::geo
