@@ -71,6 +71,7 @@ struct FrontEndStats {
     u64 clipped = 0;        // primitives cut at the near plane
     u64 badDraws = 0;       // draws whose vertex or index data was not valid memory
     u64 budgetDropped = 0;  // primitives dropped at the GE-time limit (setPixelBudget)
+    u64 culledPatches = 0;  // patches not tessellated: wholly beyond a side of the clip rectangle
 };
 
 // The raster parameters of a draw: scissor ∩ REGION2 (docs/ge-rules.md §8.6), shading, texturing
@@ -94,7 +95,9 @@ public:
     // index data is unreadable: nothing is drawn and no vertices stay open. Unreadable vertices
     // drop the primitives they belong to (counted as a bad draw, the rest is drawn).
     bool prim(const Memory& mem, const GeState& st, const PrimPacket& p, PrimitiveSink& sink, std::string* err);
-    // A Bezier/spline patch (spline.h tessellates it). Ends any open PRIM.
+    // A Bezier/spline patch (spline.h tessellates it). Ends any open PRIM. A patch whose control
+    // points all lie beyond one side of the clip rectangle is not tessellated (its surface lies
+    // in their hull: draw_front_end.cpp patchOffClip); FrontEndStats::culledPatches counts them.
     bool patch(const Memory& mem, const GeState& st, const PatchPacket& p, PrimitiveSink& sink, std::string* err);
     // Immediate vertices (already in drawing coordinates); `st` as immediateState gives it.
     void immediate(const GeState& st, const ImmPacket& p, PrimitiveSink& sink);
@@ -102,6 +105,11 @@ public:
     // keeps what a PRIM type 7 continuation after it needs — its still-open vertices,
     // transformed, and the strip parity — as prim()'s walk would have left them.
     void keepOpenVertices(const Memory& mem, const GeState& st, const PrimPacket& p);
+    // The test patch() passes the tessellator (a patch wholly beyond a side of the clip
+    // rectangle is skipped, counted in culledPatches), for a caller tessellating a patch itself
+    // (the GL translator's GPU vertex path). It reads the front end's transform state made here
+    // for `st` and the patch's format: use it before the next call into the front end.
+    PatchSkip offClipTest(const Memory& mem, const GeState& st, const PatchPacket& p);
     // A patch drawn elsewhere: ends any open PRIM, as patch() does.
     void endOpenPrim() {
         pending_.clear();

@@ -304,7 +304,7 @@ void splineKnots(int n, int knotType, std::vector<float>& knots) {
 }
 
 bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p, const AccuracyProfile& acc,
-                     TessOutput& out, std::string* err) {
+                     TessOutput& out, std::string* err, const PatchSkip& skip) {
     out.verts.clear();
     out.indices.clear();
     out.prim = p.patchPrim == 0 ? GE_PRIM_TRIANGLES : p.patchPrim == 1 ? GE_PRIM_LINES : GE_PRIM_POINTS;
@@ -330,6 +330,7 @@ bool tessellatePatch(const Memory& mem, const GeState& st, const PatchPacket& p,
     for (u32 i = 0; i < n; ++i)
         if (!reader.read(p.vertexAddr, indices[i], cps[i]))
             return fail(err, "patch control point %u (vertex %u) is not readable", i, indices[i]);
+    if (skip && skip(cps)) return true;
 
     Surface s;
     s.cps = &cps;

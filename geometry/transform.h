@@ -9,6 +9,7 @@
 // Through mode skips all of it: positions are drawing coordinates, texture coordinates texels.
 #pragma once
 #include <cstdint>
+
 #include "geometry/lighting.h"
 #include "geometry/raster.h"
 #include "hle/ge_state.h"

@@ -404,7 +404,7 @@ const SoftStats& SoftRenderer::stats() const {
     SoftStats& s = impl_->stats;
     const geo::FrontEndStats& f = impl_->frontEnd.stats();
     s.vertices = f.vertices, s.primitives = f.primitives, s.culled = f.culled, s.discarded = f.discarded;
-    s.clipped = f.clipped, s.badDraws = f.badDraws, s.budgetDropped = f.budgetDropped;
+    s.clipped = f.clipped, s.badDraws = f.badDraws, s.budgetDropped = f.budgetDropped, s.culledPatches = f.culledPatches;
     return s;
 }
 

@@ -37,6 +37,7 @@ struct SoftStats {
     u64 batches = 0;
     u64 badDraws = 0;        // draws whose vertex or index data was not valid memory
     u64 budgetDropped = 0;   // primitives dropped at the GE-time limit (setPixelBudget)
+    u64 culledPatches = 0;   // patches wholly beyond a side of the clip rectangle: not tessellated
 };
 
 class SoftRenderer : public Renderer {

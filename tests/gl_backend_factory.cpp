@@ -56,7 +56,7 @@ TEST(BackendFactory, GlOffersEveryInterfaceAtItsScale) {
         EXPECT_EQ(rgba.size(), size_t(16 * scale) * size_t(8 * scale));
         EXPECT_NE(b.presenter->presentFrame(0x04000000, 64, GE_FORMAT_8888, 16, 8, 32, 16, err), 0u) << err;
         const std::string text = b.stats->statsText();
-        EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 20) << text;
+        EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 21) << text;
         EXPECT_NE(text.find("glDrawCalls"), std::string::npos) << text;
     }
 }

@@ -555,6 +555,49 @@ TEST(GlHwMode, GpuVerticesDrawATessellatedPatch) {
     }
 }
 
+// A patch whose control points all lie beyond the right edge of the clip rectangle is not
+// tessellated, on the GPU vertex path (the front end's test, geo::DrawFrontEnd::offClipTest) as
+// on the CPU path; moved to reach into the screen, it is drawn. The pixels are the software
+// model's either way.
+TEST(GlHwMode, PatchesWhollyBeyondTheClipRectangleAreCulledOnBothVertexPaths) {
+    auto build = [](ListBuilder& b, float dx) {
+        testscene::nearClipFrame(b, false);
+        b.patchDivide(6, 5);
+        constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+        BuildVertex v[16];
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                BuildVertex& c = v[j * 4 + i];
+                c.x = dx + 0.3f * float(i);
+                c.y = -0.6f + 0.4f * float(j);
+                c.z = 1.0f;
+                c.color = 0xFF00C000u | u32(40 + 60 * i);
+            }
+        const auto data = packVertices(vtype, v, 16);
+        b.drawBezier(vtype, 4, 4, 0, b.place(data.data(), u32(data.size()), 4));
+    };
+    for (auto path : {gl::GlOptions::Vertices::Gpu, gl::GlOptions::Vertices::Cpu})
+        for (float dx : {1.1f, 0.5f}) {  // beyond the right edge; reaching into the screen
+            SCOPED_TRACE(std::string(path == gl::GlOptions::Vertices::Gpu ? "gpu" : "cpu") + (dx > 1 ? " off" : " in"));
+            gl::GlOptions o = hwOptions(1);
+            o.vertices = path;
+            Memory mem;
+            std::string err;
+            auto r = gl::createGlRenderer(mem, o, err);
+            if (!r) GTEST_SKIP() << err;
+            auto scene = [&](ListBuilder& b) { build(b, dx); };
+            const std::vector<u8> vram = runListVram(mem, *r, scene);
+            EXPECT_EQ(r->stats().culledPatches, dx > 1 ? 1u : 0u);
+            EXPECT_EQ(r->stats().gpuVertexDraws, path == gl::GlOptions::Vertices::Gpu && dx < 1 ? 1u : 0u);
+            std::vector<u8> soft;
+            renderVram(nullptr, scene, soft, err);
+            size_t covered = 0;
+            EXPECT_EQ(pixelsApart(vram, soft, covered), 0u);
+            if (dx < 1) EXPECT_GT(covered, 1000u);
+            else EXPECT_EQ(covered, 0u);
+        }
+}
+
 // Auto picks the CPU vertex path on a software rasteriser (llvmpipe here) and Gpu forces it.
 TEST(GlHwMode, VertexPathAutoIsCpuOnASoftwareRasteriser) {
     using namespace testscene;

@@ -249,7 +249,7 @@ TEST(GlProgramCache, ShaderDumpWritesSources) {
     EXPECT_EQ(verts, frags);
     // Stats text has one line per counter.
     const std::string text = gl::glStatsText(st);
-    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 20);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 21);
     EXPECT_NE(text.find("shaderCompiles"), std::string::npos);
     EXPECT_GT(st.uniformUploads, 0u);
     EXPECT_GT(st.draws, 0u);

@@ -43,7 +43,8 @@ struct Scene {
         b.clear(CLEAR_COLOR | CLEAR_DEPTH, 0xFF000000, 0);
     }
     // Runs the list on a fresh renderer with `threads` and returns the whole of VRAM.
-    std::vector<u8> run(int threads, const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp()) {
+    std::vector<u8> run(int threads, const geo::AccuracyProfile& acc = geo::AccuracyProfile::psp(),
+                        SoftStats* stats = nullptr) {
         ListBuilder copy = b;
         copy.finish();
         const u32 list = copy.placeList();
@@ -56,6 +57,7 @@ struct Scene {
         eng.startList(list, 0);
         EXPECT_EQ(eng.run(), RunStatus::Completed);
         r->flushToMemory();
+        if (stats) *stats = static_cast<SoftRenderer*>(r.get())->stats();
         const u8* v = mem.ptr(Memory::kVramBase, Memory::kVramSize);
         return std::vector<u8>(v, v + Memory::kVramSize);
     }
@@ -122,6 +124,58 @@ TEST(SoftRender, TransformedTriangleLandsWhereTheViewportPutsIt) {
     // Depth written: Z = SZ·0.25 + TZ with sceGuDepthRange(65535, 0): −32767.5·0.25 + 32767.5.
     const u16 z = readLE16(&vram[(kZb - Memory::kVramBase) + (100u * kStride + 150u) * 2]);
     EXPECT_EQ(z, 0);  // depth writes are off (ZTE = 0)
+}
+
+// A patch wholly beyond a side of the clip rectangle is not tessellated: its surface lies in its
+// control points' hull (geometry/draw_front_end.cpp patchOffClip), so it would draw nothing. One
+// reaching into the rectangle is drawn, and control points with W <= 0 are not judged.
+TEST(SoftRender, PatchesWhollyBeyondTheClipRectangleAreCulledAndOnlyThose) {
+    struct Case {
+        const char* what;
+        float x0, x1;   // the control points' X span (model = clip X; drawing x = 240 + 240·X)
+        float w;        // the projection's W row: clip W = w (identity otherwise)
+        bool through;   // through mode: the control points in drawing coordinates (x0..x1, y 100..140)
+        u64 culled;
+        int lit;        // pixels drawn in row 136 (through mode: row 120)
+    };
+    const Case cases[] = {
+        {"right of the screen", 1.05f, 1.5f, 1.0f, false, 1, 0},                 // x 492 … 600
+        {"reaching in from the right", 0.9f, 1.5f, 1.0f, false, 0, 480 - 456},  // x 456 … 600
+        // Projected to x 492 … 600 too, but by a negative W: the hull test does not hold there.
+        {"beyond the right edge, W < 0", 1.05f, 1.5f, -1.0f, false, 0, 0},
+        {"through mode, right of the screen", 483.0f, 520.0f, 1.0f, true, 1, 0},
+        {"through mode, two pixels in", 478.0f, 520.0f, 1.0f, true, 0, 2},
+    };
+    for (const Case& c : cases) {
+        Scene s;
+        const float id[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        float proj[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, c.w};
+        s.b.setMatrix(GeMatrix::World, id);
+        s.b.setMatrix(GeMatrix::View, id);
+        s.b.setMatrix(GeMatrix::Proj, proj);
+        s.b.enable(GE_CMD_CLE, true);
+        s.b.patchDivide(4, 4);
+        const u32 vtype = vt::COL_8888 | vt::POS_F | (c.through ? vt::THROUGH : 0);
+        BuildVertex v[16];
+        for (int j = 0; j < 4; ++j)
+            for (int i = 0; i < 4; ++i) {
+                BuildVertex& e = v[j * 4 + i];
+                e.x = c.x0 + (c.x1 - c.x0) * float(i) / 3.0f;
+                e.y = c.through ? 100.0f + 40.0f * float(j) / 3.0f : (0.5f - float(j) / 3.0f) * c.w;
+                e.z = c.through ? 1000.0f : 0.25f * c.w;
+                if (!c.through) e.x *= c.w;  // clip X = x·w: the same projected place whatever W's sign
+                e.color = 0xFF00FF00;
+            }
+        const auto bytes = packVertices(vtype, v, 16);
+        s.b.drawBezier(vtype, 4, 4, 0, s.b.place(bytes.data(), u32(bytes.size()), 4));
+        SoftStats st;
+        const auto vram = s.run(1, geo::AccuracyProfile::psp(), &st);
+        const int row = c.through ? 120 : 136;
+        int lit = 0;
+        for (int x = 0; x < 480; ++x) lit += Scene::pixel(vram, kFb, x, row) == 0x00FF00u;
+        EXPECT_EQ(st.culledPatches, c.culled) << c.what;
+        EXPECT_EQ(lit, c.lit) << c.what;
+    }
 }
 
 TEST(SoftRender, CullingSense) {

@@ -182,12 +182,14 @@ bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
 }
 
 // Tessellated on the CPU as the CPU path does (geo::tessellatePatch), transformed and lit on
-// the GPU. A patch the tessellator refuses goes to the CPU path, which reports it.
+// the GPU; culled as there when wholly beyond a side of the clip rectangle (the front end's
+// test). A patch the tessellator refuses goes to the CPU path, which reports it.
 bool GlRendererImpl::drawPatchOnGpu(const PatchPacket& p) {
     const GeState& st = *p.state;
     const GpuDrawState g = gpuDrawState(st);
     if (!gpu_.acceptPatch(st, p, g.texture, g.dstTexture)) return false;
-    if (!geo::tessellatePatch(mem_, st, p, opt_.accuracy, tess_)) return false;
+    if (!geo::tessellatePatch(mem_, st, p, opt_.accuracy, tess_, nullptr, pipeline_.patchOffClipTest(mem_, st, p)))
+        return false;
     pipeline_.endOpenPrim();
     if (!tess_.verts.empty()) {
         // The tessellator generates normals when lighting needs them (geo::DrawFrontEnd::patch).

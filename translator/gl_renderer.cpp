@@ -245,6 +245,7 @@ GlStats GlRendererImpl::stats() const {
     s.textureCacheHits = textures_.stats().hits;
     s.readbacks = fb_.readbacks();
     s.cpuTriangles = pipeline_.glTriangles();
+    s.culledPatches = pipeline_.frontEndStats().culledPatches;
     s.cpuTriangleCycles = pipeline_.hostPixels() / 3;  // pixels at 1/3 cycle (hle/ge_time.h)
     s.cpuGeometryBytes = geo_.reservedBytes() + drawGeo_.reservedBytes();
     s.stateChanges = state_.counters().stateChanges;
@@ -297,6 +298,7 @@ std::string glStatsText(const GlStats& s) {
     line("cpuTriangleCycles", s.cpuTriangleCycles);
     line("batchPeak", s.batchPeak);
     line("cpuGeometryBytes", s.cpuGeometryBytes);
+    line("culledPatches", s.culledPatches);
     for (size_t i = 0; i < size_t(CpuReason::Count) && i < 8; ++i)
         if (s.cpuVertexByReason[i]) {
             char name[64];

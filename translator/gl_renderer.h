@@ -85,7 +85,9 @@ struct GlStats {
         cpuTriangles = 0, cpuTriangleCycles = 0,
         // The most GL triangles one batch held, and the bytes the CPU geometry arrays (batch and
         // current draw) hold reserved now.
-        batchPeak = 0, cpuGeometryBytes = 0;
+        batchPeak = 0, cpuGeometryBytes = 0,
+        // Patches the CPU path did not tessellate: wholly beyond a side of the clip rectangle.
+        culledPatches = 0;
     u64 cpuVertexByReason[8] = {};  // gpu_vertex_path.h CpuReason order
 };
 

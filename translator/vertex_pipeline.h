@@ -108,6 +108,9 @@ public:
     }
     // A patch drawn elsewhere (the GPU vertex path): ends any open PRIM.
     void endOpenPrim() { frontEnd_.endOpenPrim(); }
+    geo::PatchSkip patchOffClipTest(const Memory& mem, const GeState& st, const PatchPacket& p) {
+        return frontEnd_.offClipTest(mem, st, p);
+    }
     // Every draw packet's dirty groups, first thing (geo::DrawFrontEnd::noteDirty).
     void noteDirty(u32 groups) { frontEnd_.noteDirty(groups); }
     // Immediate vertices, already in drawing coordinates; the AP2 flags of the packet override
@@ -119,6 +122,7 @@ public:
     // After a process* call: whether every primary colour of its primitives that reaches a
     // fragment has alpha 255 (geo::DrawFrontEnd::drawAlphaFull).
     bool drawAlphaFull() const { return frontEnd_.drawAlphaFull(); }
+    const geo::FrontEndStats& frontEndStats() const { return frontEnd_.stats(); }
     // Cumulative pixel bound of the primitives processed (Renderer::pixelWork, hle/ge_time.h),
     // plus, while the engine hands a pixel budget (a GE-time limit is set: dump replays), the
     // CPU side of the GL triangles built: kHostPixelsPerGlTriangle each.
