@@ -110,18 +110,20 @@ inline void store3(F4 v, float out[3]) { out[0] = v[0], out[1] = v[1], out[2] = 
 }  // namespace
 
 void toColumns(const float* m, int rows, MatrixColumns& out) {
-    u32 special = 0;
-    for (int k = 0; k < 4; ++k)
-        for (int r = 0; r < 4; ++r) {
-            const float e = r < rows ? m[rows * k + r] : 0.0f;
-            out.col[k][r] = e;
-            u32 b;
-            std::memcpy(&b, &e, 4);
-            if (k == 3) continue;
-            special |= u32((b & 0x7F800000u) == 0x7F800000u);
-            out.keep[k][r] = (b & 0x7F800000u) ? -1 : 0;
-        }
-    out.special = special != 0;
+    // Made at every transform-state change (GachiTora: most draws), so in vector form too.
+    I4 special = {};
+    for (int k = 0; k < 4; ++k) {
+        F4 c = {};
+        if (rows == 4) std::memcpy(&c, m + 4 * k, 16);
+        else std::memcpy(&c, m + 3 * k, 12);
+        std::memcpy(out.col[k], &c, 16);
+        if (k == 3) break;  // the translation takes no term rule
+        const I4 e = (I4)c & kExpMask;
+        special |= e == kExpMask;
+        const I4 keep = e != 0;
+        std::memcpy(out.keep[k], &keep, 16);
+    }
+    out.special = (special[0] | special[1] | special[2] | special[3]) != 0;
 }
 
 // The products below take finiteTerms unless a factor has exponent 255 (rare: the infinities and
