@@ -246,10 +246,6 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
         }
     }
 
-    toColumns(ts.world, 3, ts.worldCols);
-    toColumns(ts.view, 3, ts.viewCols);
-    toColumns(ts.combinedClip ? ts.worldViewProj : ts.worldToClip ? ts.viewProj : ts.proj, 4, ts.clipCols);
-
     const u32 map = st.TMAP_mode();
     ts.texMap = map == 3 ? 0 : int(map);  // 3 behaves as UV (ge-rules.md §3.8)
     ts.projSource = int(st.TMAP_proj());
@@ -290,6 +286,16 @@ TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, b
             normalizeOr001(ts.shadeLight[k]);
         }
     }
+    // The column forms transformVertex reads, only those it reads (made at every transform-state
+    // change): the clip matrix always; world for the world position (fog, lighting, the chained
+    // products) and the world normal (lighting, shade mapping); view for fog's view Z; the
+    // texture matrix for projection mapping.
+    const bool fogZ = ts.fog && ts.fogFixed < 0;
+    const bool clipFromView = !ts.combinedClip && !ts.worldToClip;
+    toColumns(ts.combinedClip ? ts.worldViewProj : ts.worldToClip ? ts.viewProj : ts.proj, 4, ts.clipCols);
+    if (fogZ || !ts.combinedClip || ts.lighting || ts.texMap == 2) toColumns(ts.world, 3, ts.worldCols);
+    if (fogZ || clipFromView) toColumns(ts.view, 3, ts.viewCols);
+    if (ts.texMap == 1) toColumns(ts.tgen, 3, ts.tgenCols);
     return ts;
 }
 
@@ -437,7 +443,7 @@ void transformVertex(const TransformState& ts, const DecodedVertex& in, ClipVert
         default: std::memcpy(src, normal, sizeof src); break;
         }
         float stq[3];
-        mulPoint3x4(ts.tgen, src, stq);
+        store3(product<true>(ts.tgenCols, src), stq);
         sv.s = stq[0], sv.t = stq[1], sv.q = stq[2];
         break;
     }

@@ -83,9 +83,9 @@ struct TransformState {
     // renderer transforms to world space and then applies view·proj folded into one 4×4 matrix.
     bool worldToClip = false;
     float viewProj[16] = {};
-    // world, view and the clip matrix transformVertex uses (worldViewProj, viewProj or proj) in
-    // column form, by makeTransformState.
-    MatrixColumns worldCols, viewCols, clipCols;
+    // world, view, the clip matrix transformVertex uses (worldViewProj, viewProj or proj) and
+    // TGEN in column form, by makeTransformState (those the draw's vertices need).
+    MatrixColumns worldCols, viewCols, clipCols, tgenCols;
 };
 
 // `vtype` is the draw's CMD_VTYPE word; `hasColor` whether its format carries a colour;
