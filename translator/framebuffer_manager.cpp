@@ -309,8 +309,8 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
         }
         return;
     }
-    // Depth: stage the u16 values, then draw them into the D32F target as gl_FragDepth.
-    if (!depthProg_ && !buildDepthProgram()) return;
+    // Depth: the u16 values, held by the D32F target as z / 65536 (exact in float: what kDepthFs
+    // writes as gl_FragDepth).
     depth16_.assign(size_t(w) * size_t(h), 0);
     for (int y = 0; y < h; ++y) {
         const u32 rowAddr = t.addr + (u32(y0 + y) * t.stride + u32(x0)) * 2;
@@ -319,6 +319,19 @@ void FramebufferManager::uploadRect(Target& t, int x0, int y0, int w, int h) {
         if (!src || avail == 0) continue;
         for (u32 x = 0; x < avail; ++x) depth16_[size_t(y) * size_t(w) + x] = readLE16(src + 2 * x);
     }
+    if (scale_ == 1) {
+        // At 1x the values go straight into the depth texture (desktop GL takes DEPTH_COMPONENT
+        // data there), so no program draws them and none is compiled: on llvmpipe that compile
+        // was a seventh of a small dump's whole GL render (hot pixel, 0.19 s).
+        depthF_.resize(depth16_.size());
+        for (size_t i = 0; i < depth16_.size(); ++i) depthF_[i] = float(depth16_[i]) * (1.0f / 65536.0f);
+        gl.BindTexture(GL_TEXTURE_2D, t.tex);
+        gl.TexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, depthF_.data());
+        ++clobbers_;
+        return;
+    }
+    // At N× the staged values are stretched onto the target as gl_FragDepth.
+    if (!depthProg_ && !buildDepthProgram()) return;
     gl.PixelStorei(GL_UNPACK_ALIGNMENT, 2);
     gl.BindTexture(GL_TEXTURE_2D, depthStage_);
     gl.TexSubImage2D(GL_TEXTURE_2D, 0, x0, y0, w, h, GL_RED_INTEGER, GL_UNSIGNED_SHORT, depth16_.data());

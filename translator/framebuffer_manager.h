@@ -172,6 +172,7 @@ private:
     std::vector<u32> pixels_;
     std::vector<float> depthPixels_;
     std::vector<u16> depth16_;
+    std::vector<float> depthF_;
     u64 readbacks_ = 0, writeBacks_ = 0, clobbers_ = 0, cpuWriteReuploads_ = 0;
     bool suspect_ = false;
 };
