@@ -5,11 +5,11 @@
 # of each pair's wall times, and the median of those ratios (per dump, over all dumps, and over the
 # five dumps PPSSPP takes longest on). Peak RSS of each side too.
 #
-#   PPSSPP_HEADLESS=/path/to/PPSSPPHeadless [BENCH_MODES="soft gl"] scripts/bench_vs_ppsspp.sh [BUILD_DIR] [ROUNDS] [DUMP...]
+#   PPSSPP_HEADLESS=/path/to/PPSSPPHeadless [BENCH_MODES="soft gl hw"] scripts/bench_vs_ppsspp.sh [BUILD_DIR] [ROUNDS] [DUMP...]
 #
-# Modes: soft (ge2gl --backend soft vs PPSSPP --graphics=software) and gl (ge2gl --backend gl, exact
-# mode on OSMesa/llvmpipe, vs PPSSPP --graphics=gles on Mesa's software GL). Both sides write the
-# frame as a PNG. A mode whose PPSSPP run fails (a build without a headless GL context answers
+# Modes: soft (ge2gl --backend soft vs PPSSPP --graphics=software), gl (ge2gl --backend gl, exact
+# mode on OSMesa/llvmpipe, vs PPSSPP --graphics=gles on Mesa's software GL) and hw (ge2gl's
+# hardware mode at 1x, same GL, vs --graphics=gles). Both sides write the frame as a PNG. A mode whose PPSSPP run fails (a build without a headless GL context answers
 # --graphics=gles with an error) is reported and skipped, not timed. A PPSSPP whose GL context
 # needs an X display takes it from DISPLAY (start the server beforehand, so that its start is not
 # timed: docs/benchmarks.md). Dumps default to
@@ -36,8 +36,17 @@ timed() {
 
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-for mode in ${BENCH_MODES:-soft gl}; do
-  if [ "$mode" = soft ]; then ours=(--backend soft); theirs=(--graphics=software); else ours=(--backend gl); theirs=(--graphics=gles); fi
+# A PPSSPP built with SDL3 from source (integrations/ppsspp/sdl3.sh) makes its GL context through
+# SDL's offscreen driver (EGL) when no X display is given.
+[ -n "${DISPLAY:-}" ] || export SDL_VIDEO_DRIVER=${SDL_VIDEO_DRIVER:-offscreen}
+
+for mode in ${BENCH_MODES:-soft gl hw}; do
+  case $mode in
+    soft) ours=(--backend soft); theirs=(--graphics=software) ;;
+    gl) ours=(--backend gl); theirs=(--graphics=gles) ;;
+    hw) ours=(--backend gl --gl-mode hw); theirs=(--graphics=gles) ;;
+    *) echo "bench_vs_ppsspp: unknown mode $mode (soft, gl, hw)" >&2; exit 2 ;;
+  esac
   : > "$tmp/$mode.rows"
   read -r probe _ < <(LIBGL_ALWAYS_SOFTWARE=1 timed "$PPSSPP_HEADLESS" "${theirs[@]}" --timeout=60 --screenshot-save="$tmp/p.png" "${dumps[0]}")
   if [ "$probe" = fail ]; then

@@ -17,7 +17,9 @@ The edits (README.md says why each is needed):
   seams         `virtual` on the GPUCommon list functions that PPSSPP's dump player and PPGe call
                 directly, and sceGe_user registered from the core's module when ge2gl is selected;
   --without-sdl building PPSSPPHeadless where SDL3 is not installed (Debian 12): no SDL frontend
-                definitions, the headless runner's no-window branch.
+                definitions, the headless runner's no-window branch;
+  offscreen GL  (with SDL) the headless GL context on SDL's offscreen driver (EGL, no X display):
+                GLEW's missing GLX display accepted.
 --check only reports whether the tree already carries every edit (exit 0) or not (exit 1).
 """
 import os
@@ -219,6 +221,20 @@ def without_sdl_edits(root):
                       2, "#if PPSSPP_PLATFORM(ANDROID) || PPSSPP_ARCH(LOONGARCH64) || defined(GE2GL_HEADLESS_WITHOUT_SDL)")
 
 
+def offscreen_gl_edits(root):
+    # With SDL3 built from source (sdl3.sh) the headless runner makes its GL context through SDL's
+    # offscreen video driver, that is EGL, with no X display. The system GLEW is built for GLX:
+    # glewInit loads the GL entry points (glewContextInit, through GLVND's dispatch, which serves
+    # an EGL context as well) and then fails in glxewInit with GLEW_ERROR_NO_GLX_DISPLAY, since
+    # there is no GLX display to query. The headless runner uses no GLX extension, so that one
+    # result is accepted (GLEW's glew.c, glewInit).
+    yield replace(root, "headless/SDLHeadlessGLGraphicsContext.cpp",
+                  "\tif (GLEW_OK != glewInit()) {\n",
+                  "\tconst GLenum glewResult = glewInit();  // ge2gl: an EGL context has no GLX display\n"
+                  "\tif (glewResult != GLEW_OK && glewResult != GLEW_ERROR_NO_GLX_DISPLAY) {\n",
+                  "ge2gl: an EGL context has no GLX display")
+
+
 def main(argv):
     args = [a for a in argv[1:] if not a.startswith("--")]
     flags = {a for a in argv[1:] if a.startswith("--")}
@@ -245,6 +261,8 @@ def main(argv):
         changed = sum(1 for c in registration_edits(root) if c)
         if "--without-sdl" in flags:
             changed += sum(1 for c in without_sdl_edits(root) if c)
+        else:
+            changed += sum(1 for c in offscreen_gl_edits(root) if c)
     except EditError as e:
         print(f"edit_ppsspp: {e}", file=sys.stderr)
         return 1
