@@ -3,8 +3,8 @@
 # Runs scripts/bench_vs_ppsspp.sh against a stand-in for PPSSPPHeadless (CI has no PPSSPP): a
 # script that accepts PPSSPP's options, writes the screenshot, takes a fixed 0.2 s for
 # --graphics=software and fails for --graphics=gles as a build without a headless GL context does.
-# Checks that the soft mode prints a row per dump and its medians, and that the gl mode is reported
-# as not measured instead of being timed.
+# Checks that the soft mode prints a row per dump and its medians, and that the gl and hw modes
+# (both against --graphics=gles) are reported as not measured instead of being timed.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build=${1:-$root/build}
@@ -34,6 +34,8 @@ for d in "${dumps[@]}"; do
 done
 grep -Eq '^soft: median of pair ratios \(ge2gl / PPSSPP\) over 2 dumps: [0-9.]+; over the 5 heaviest for PPSSPP: [0-9.]+$' "$tmp/out" ||
   fail "no soft medians"
-grep -q '^gl: PPSSPP fails with --graphics=gles' "$tmp/out" || fail "the failing gl mode was not reported"
-grep -q '^== gl ==' "$tmp/out" && fail "the failing gl mode was timed"
+for mode in gl hw; do
+  grep -q "^$mode: PPSSPP fails with --graphics=gles" "$tmp/out" || fail "the failing $mode mode was not reported"
+  grep -q "^== $mode ==" "$tmp/out" && fail "the failing $mode mode was timed"
+done
 echo "check_bench_vs_ppsspp: ok"
