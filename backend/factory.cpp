@@ -58,6 +58,17 @@ bool backendBuilt(BackendKind kind) {
 #endif
 }
 
+void preloadBackend(const BackendOptions& opt) {
+#ifdef GE2GL_HAVE_GL
+    if (opt.kind == BackendKind::Gl)
+        gl::preloadContextLibrary(opt.glContext == GlContext::EGL      ? gl::ContextKind::EGL
+                                  : opt.glContext == GlContext::OSMesa ? gl::ContextKind::OSMesa
+                                                                       : gl::ContextKind::Null);
+#else
+    (void)opt;
+#endif
+}
+
 Backend createBackend(Memory& mem, const BackendOptions& opt, std::string& err) {
     Backend b;
     switch (opt.kind) {

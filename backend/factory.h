@@ -65,4 +65,9 @@ bool backendBuilt(BackendKind kind);
 // (HostContextUser): its context current on this thread, or the host's state saved.
 Backend createBackend(Memory& mem, const BackendOptions& opt, std::string& err);
 
+// What createBackend would load before making a backend of `opt` — the GL context's library
+// (translator/gl_context.h preloadContextLibrary) — loaded now, on the calling thread: a caller
+// may run it on another thread while it reads its input. Thread-safe; nothing for soft and null.
+void preloadBackend(const BackendOptions& opt);
+
 }  // namespace ge::backend

@@ -176,6 +176,11 @@ const EglApi* eglIfLoaded() { return ifLoaded<EglApi>(GE2GL_EGL_NAMES, &egl); }
 
 }  // namespace
 
+void preloadContextLibrary(ContextKind kind) {
+    if (kind == ContextKind::OSMesa) (void)osmesa();
+    else if (kind == ContextKind::EGL) (void)egl();
+}
+
 shadergen::HostCaps GlCaps::hostCaps(bool baseline, bool floatInterp) const {
     shadergen::HostCaps c;
     c.exactInterp = exactInterp && !floatInterp ? 1 : 0;

@@ -115,6 +115,13 @@ public:
     virtual void forgetGuestMemory() = 0;
 };
 
+// Loads the library a context of `kind` is made with (libOSMesa or libEGL, and libLLVM behind
+// llvmpipe: tens of milliseconds of loading and relocation) without making a context, as the
+// first createGlRenderer with that context would. A caller with other work first (reading a dump)
+// may call it on another thread, so that the loading overlaps that work. Thread-safe; nothing for
+// Current and Null, nor once loaded.
+void preloadContextLibrary(ContextKind kind);
+
 // Creates the context (unless Current) and the renderer, entered (HostContextUser); nullptr +
 // err when GL is unavailable or the options are out of range.
 std::unique_ptr<GlRenderer> createGlRenderer(ge::Memory& mem, const GlOptions& opt, std::string& err);

@@ -6,16 +6,19 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
+#include <thread>
 
 #include "tools/lib/draw_hook.h"
 
 namespace ge::tools {
 
-backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
-    backend::BackendOptions bo;
+namespace {
+
+// The backend options a render asks for; false + err for an unknown name or a backend not built.
+bool backendOptions(const RenderOptions& opt, backend::BackendOptions& bo, std::string& err) {
     if (!geo::AccuracyProfile::fromName(opt.accuracy.c_str(), bo.accuracy)) {
         err = "unknown accuracy profile '" + opt.accuracy + "' (use psp or ppsspp, optionally +SWITCH/-SWITCH)";
-        return {};
+        return false;
     }
     if (opt.backend == "null") {
         bo.kind = backend::BackendKind::Null;
@@ -25,34 +28,42 @@ backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::strin
     } else if (opt.backend == "gl") {
         if (!backend::backendBuilt(backend::BackendKind::Gl)) {
             err = "backend 'gl' is not built in this version of ge2gl";
-            return {};
+            return false;
         }
         bo.kind = backend::BackendKind::Gl;
         if (opt.glContext == "egl") bo.glContext = backend::GlContext::EGL;
         else if (opt.glContext == "null") bo.glContext = backend::GlContext::Null;
         else if (opt.glContext != "osmesa") {
             err = "unknown GL context '" + opt.glContext + "' (use osmesa, egl or null)";
-            return {};
+            return false;
         }
         bo.glBaseline = opt.glBaseline;
         if (opt.glMode == "hw") bo.glMode = backend::GlMode::Hw;
         else if (opt.glMode != "exact") {
             err = "unknown GL mode '" + opt.glMode + "' (use exact or hw)";
-            return {};
+            return false;
         }
         bo.scale = opt.scale;
         if (opt.glVertices == "gpu") bo.glVertices = backend::GlVertices::Gpu;
         else if (opt.glVertices == "cpu") bo.glVertices = backend::GlVertices::Cpu;
         else if (opt.glVertices != "auto") {
             err = "unknown vertex path '" + opt.glVertices + "' (use auto, gpu or cpu)";
-            return {};
+            return false;
         }
         bo.shaderDumpDir = opt.shaderDumpDir;
         bo.programCacheDir = opt.programCacheDir;
     } else {
         err = "unknown backend '" + opt.backend + "' (use soft, gl or null)";
-        return {};
+        return false;
     }
+    return true;
+}
+
+}  // namespace
+
+backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err) {
+    backend::BackendOptions bo;
+    if (!backendOptions(opt, bo, err)) return {};
     backend::Backend b = backend::createBackend(mem, bo, err);
     if (!b && err.empty()) err = "could not create the GL backend";  // soft and null always start
     return b;
@@ -136,7 +147,16 @@ bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOut
                     std::vector<u8>* vramOut, std::vector<u16>* depthOut) {
     auto t0 = std::chrono::steady_clock::now();
     dump::Dump d;
-    if (!dump::loadDump(path, d, err)) return false;
+    // A GL context's library (OSMesa or EGL, with libLLVM: tens of milliseconds to load and
+    // relocate) loads on another thread while the dump is read and decompressed.
+    std::thread preload;
+    backend::BackendOptions bo;
+    std::string ignored;  // a bad option is reported when the backend is made
+    if (backendOptions(opt, bo, ignored) && bo.kind == backend::BackendKind::Gl)
+        preload = std::thread([bo] { backend::preloadBackend(bo); });
+    const bool loaded = dump::loadDump(path, d, err);
+    if (preload.joinable()) preload.join();
+    if (!loaded) return false;
     if (!renderDump(d, opt, out, err, vramOut, depthOut)) {
         err = path + ": " + err;  // load errors already name the file
         return false;
