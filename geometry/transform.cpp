@@ -39,24 +39,14 @@ inline float geTerm(float a, float b) {
     return float(value(ba, ea) * value(bb, eb));  // overflows to ±inf only for |other| ≥ ~1
 }
 
-// Whether any of the n values has the exponent field 255, where geTerm leaves IEEE arithmetic.
-inline bool anyExp255(const float* v, int n) {
-    u32 hit = 0;
-    for (int i = 0; i < n; ++i) {
-        u32 b;
-        std::memcpy(&b, &v[i], 4);
-        hit |= u32((b & 0x7F800000u) == 0x7F800000u);
-    }
-    return hit != 0;
-}
-
 // The common case, where no factor has exponent 255: geTerm is then the IEEE product, or zero
 // where either factor is zero or denormal — a select, done four rows at a time. A matrix column
 // (MatrixColumns) is four lanes and each lane does one row's operations in their order,
 // out_r = (t(m0r, p0) + t(m1r, p1)) + (t(m2r, p2) + m3r), so every row is bit-identical to geTerm
-// row by row (-ffp-contract=off keeps products and sums apart). GCC and Clang vector extensions: SSE on x86-64, NEON on AArch64. The scalar form, with the matrix
-// checked for exponent 255 at every vertex, was a fifth of Pursuit Force's per-draw profile
-// (three products per vertex, 90-200 instructions each).
+// row by row (-ffp-contract=off keeps products and sums apart). GCC and Clang vector extensions:
+// SSE on x86-64, NEON on AArch64. The scalar form, with the matrix checked for exponent 255 at
+// every vertex, was a fifth of Pursuit Force's per-draw profile (three products per vertex,
+// 90-200 instructions each).
 using F4 = float __attribute__((vector_size(16)));
 using I4 = std::int32_t __attribute__((vector_size(16)));
 constexpr std::int32_t kExpMask = 0x7F800000;
