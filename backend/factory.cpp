@@ -60,10 +60,7 @@ bool backendBuilt(BackendKind kind) {
 
 void preloadBackend(const BackendOptions& opt) {
 #ifdef GE2GL_HAVE_GL
-    if (opt.kind == BackendKind::Gl)
-        gl::preloadContextLibrary(opt.glContext == GlContext::EGL      ? gl::ContextKind::EGL
-                                  : opt.glContext == GlContext::OSMesa ? gl::ContextKind::OSMesa
-                                                                       : gl::ContextKind::Null);
+    if (opt.kind == BackendKind::Gl) gl::preloadContextLibrary(glOptions(opt).context);
 #else
     (void)opt;
 #endif

@@ -97,8 +97,7 @@ inline F4 product(const MatrixColumns& m, const float p[3]) {
 
 inline void store3(F4 v, float out[3]) { out[0] = v[0], out[1] = v[1], out[2] = v[2]; }
 
-}  // namespace
-
+// The column form of a 3×4 (rows 3) or 4×4 (rows 4) matrix.
 void toColumns(const float* m, int rows, MatrixColumns& out) {
     // Made at every transform-state change (GachiTora: most draws), so in vector form too.
     I4 special = {};
@@ -116,52 +115,39 @@ void toColumns(const float* m, int rows, MatrixColumns& out) {
     out.special = (special[0] | special[1] | special[2] | special[3]) != 0;
 }
 
+}  // namespace
+
 // The products below take finiteTerms unless a factor has exponent 255 (rare: the infinities and
-// NaNs games leave in unused vertex components), which takes geTerm itself.
-void mulPoint3x4(const MatrixColumns& m, const float p[3], float out[3]) {
-    // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
-    store3(product<true>(m, p), out);
-}
-
-float mulPointRow3x4(const MatrixColumns& m, const float p[3], int r) {
-    // Row r of mulPoint3x4: the same operations in the same order (the other rows cost nothing
-    // more in the vector form).
-    return product<true>(m, p)[r];
-}
-
-void mulDir3x4(const MatrixColumns& m, const float d[3], float out[3]) {
-    // ((t0 + t1) + t2), no translation.
-    store3(product<false>(m, d), out);
-}
-
-void mulPoint4x4(const MatrixColumns& m, const float p[3], float out[4]) {
-    // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
-    const F4 v = product<true>(m, p);
-    std::memcpy(out, &v, 16);
-}
-
+// NaNs games leave in unused vertex components), which takes geTerm itself. transformVertex uses
+// the draw's column forms (makeTransformState); these make them for one product.
 void mulPoint3x4(const float m[12], const float p[3], float out[3]) {
+    // x' = m0·x + m3·y + m6·z + m9, … (element k = row k%3, column k/3; ge-rules.md §3.4)
     MatrixColumns c;
     toColumns(m, 3, c);
-    mulPoint3x4(c, p, out);
+    store3(product<true>(c, p), out);
 }
 
 float mulPointRow3x4(const float m[12], const float p[3], int r) {
+    // Row r of mulPoint3x4: the same operations in the same order (the other rows cost nothing
+    // more in the vector form).
     MatrixColumns c;
     toColumns(m, 3, c);
-    return mulPointRow3x4(c, p, r);
+    return product<true>(c, p)[r];
 }
 
 void mulDir3x4(const float m[12], const float d[3], float out[3]) {
+    // ((t0 + t1) + t2), no translation.
     MatrixColumns c;
     toColumns(m, 3, c);
-    mulDir3x4(c, d, out);
+    store3(product<false>(c, d), out);
 }
 
 void mulPoint4x4(const float m[16], const float p[3], float out[4]) {
+    // clip = M·(x, y, z, 1), element k = row k%4, column k/4 (equation 3-3).
     MatrixColumns c;
     toColumns(m, 4, c);
-    mulPoint4x4(c, p, out);
+    const F4 v = product<true>(c, p);
+    std::memcpy(out, &v, 16);
 }
 
 TransformState makeTransformState(const GeState& st, u32 vtype, bool hasColor, bool hasNormal, MatrixFold* fold,

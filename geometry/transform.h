@@ -122,12 +122,5 @@ void mulPoint3x4(const float m[12], const float in[3], float out[3]);
 float mulPointRow3x4(const float m[12], const float in[3], int r);
 void mulDir3x4(const float m[12], const float in[3], float out[3]);
 void mulPoint4x4(const float m[16], const float in[3], float out[4]);
-// The same products with the matrix in column form (what transformVertex uses per vertex), and
-// the column form of a 3×4 (rows 3) or 4×4 (rows 4) matrix.
-void mulPoint3x4(const MatrixColumns& m, const float in[3], float out[3]);
-float mulPointRow3x4(const MatrixColumns& m, const float in[3], int r);
-void mulDir3x4(const MatrixColumns& m, const float in[3], float out[3]);
-void mulPoint4x4(const MatrixColumns& m, const float in[3], float out[4]);
-void toColumns(const float* m, int rows, MatrixColumns& out);
 
 }  // namespace ge::geo
