@@ -258,21 +258,23 @@ void main() {
 #endif
   if (v[0].clip.w < 0.0 && v[1].clip.w < 0.0 && v[2].clip.w < 0.0) return;
 #endif
-  // The reference's ring (geometry/assembly.h assemblePrimitives) as input indices; GL hands the
-  // inputs in the CPU's winding (a, b, c): strip triangle i is the strip's vertices
+  // The reference's ring (geometry/assembly.h assemblePrimitives) as input indices; the inputs
+  // come in the CPU's winding (a, b, c) (hwTriangleList): strip triangle i is the strip's vertices
   // (i, i + 1, i + 2), odd ones as (i + 1, i, i + 2), and vertex k sits in ring slot k mod 3; fan
   // triangle i is (0, i + 1, i + 2), the centre in slot 0, odd-numbered vertices in slot 1.
   int ring[3] = int[3](0, 1, 2);
+#if GE_PRIM != 0
+  int id = int(texelFetch(u_ring, gl_PrimitiveIDIn).r);  // i mod 6 (hwTriangleList)
+#endif
 #if GE_PRIM == 1
   {
-    int id = gl_PrimitiveIDIn;
     bool odd = (id & 1) != 0;
     ring[(odd ? id + 1 : id) % 3] = 0;
     ring[(odd ? id : id + 1) % 3] = 1;
     ring[(id + 2) % 3] = 2;
   }
 #elif GE_PRIM == 2
-  if ((gl_PrimitiveIDIn & 1) != 0) {  // vertex i + 2 odd: it takes slot 1
+  if ((id & 1) != 0) {  // vertex i + 2 odd: it takes slot 1
     ring[1] = 2;
     ring[2] = 1;
   }
@@ -333,6 +335,9 @@ bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::str
          "in vec4 g_stqf[];\n"
          "flat in ivec4 g_scr[];\n";
     const std::string interp = k.flatShade ? "flat" : "noperspective";
+    // Strips and fans arrive as triangle lists (hwTriangleList), with each triangle's number in
+    // its strip or fan (mod 6) in a buffer texture read at gl_PrimitiveIDIn.
+    if (k.primKind != 0) s += std::string("uniform usamplerBuffer ") + hwuniform::kRingIds + ";\n";
     s += interp + " out vec4 v_color;\n";
     s += interp + " out vec3 v_color2;\n";
     s += "noperspective out vec4 v_tex;\n"

@@ -59,12 +59,14 @@
 // clipped polygon as its fan (0, k, k + 1). GL therefore must NOT cull or clip: the caller draws
 // WITHOUT GL_CULL_FACE and WITHOUT GL_CLIP_DISTANCE0 (the shader writes neither cull nor clip
 // distances, and a piece's vertex order may run against the primitive's winding, as on the CPU).
-// The geometry shader relies on the order in which GL hands it a strip's and a fan's triangles
-// (the core spec's strip/fan definitions with the default GL_LAST_VERTEX_CONVENTION; checked by
-// tests/gl_hw_clip.cpp on the test driver): triangle i of a strip arrives as (i, i + 1, i + 2)
-// for even i and (i + 1, i, i + 2) for odd i, triangle i of a fan as (0, i + 1, i + 2) — the
-// CPU's winding (a, b, c) — and gl_PrimitiveIDIn = i, so the draw must start the strip or fan (no
-// PRIM type 7 continuation, no primitive restart, one strip/fan per draw call).
+// Every draw is a GL_TRIANGLES list (hwTriangleList): triangle i of a strip is given as its
+// vertices (i, i + 1, i + 2) for even i and (i + 1, i, i + 2) for odd i, triangle i of a fan as
+// (0, i + 1, i + 2) — the CPU's winding (a, b, c), the order the core spec's strips and fans hand
+// a geometry shader — and the geometry shader reads i mod 6 from the buffer texture u_ring at
+// gl_PrimitiveIDIn (the reference's ring order depends on it). So one GL draw can hold several
+// strips and fans (the translator joins consecutive draws of equal state), and nothing rests on a
+// driver's strip or fan order, provoking vertex convention or primitive restart. The draw must
+// still start its strip or fan (no PRIM type 7 continuation).
 // Through mode (key.through = 1, VTYPE bit 23): the vertex shader decodes the first stored copy
 // only (no morphing, no skinning; the stride still counts every copy) with through mode's rules
 // (hle/vertex_decoder.cpp: s8 positions 0, s16 X/Y signed and Z unsigned, float Z limited to
@@ -88,6 +90,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "geometry/accuracy_profile.h"
 #include "hle/ge_state.h"
@@ -230,9 +233,9 @@ bool generateHwVertexShader(const HwVsKey& key, const HostCaps& caps, std::strin
 //   key.primKind = 0 / 1 / 2 for GE_PRIM_TRIANGLES / _TRIANGLE_STRIP / _TRIANGLE_FAN;
 //   program = VS(key) + GS(key) + FS; u_hw = hwVsUniformsFromState(st) (which fills `cull`:
 //   culling now follows BCE/CULL from the state, as the draw front end); u_ndcScale;
-//   draw with GL_TRIANGLES / GL_TRIANGLE_STRIP / GL_TRIANGLE_FAN from the strip's or fan's first
-//   vertex, with GL_CULL_FACE and GL_CLIP_DISTANCE0 disabled and the default provoking vertex
-//   convention. Transform feedback of the GS output (GL_TRIANGLES) is VertexPipeline's
+//   hwTriangleList(primKind, the PRIM's vertex sequence) → indices (+ u_ring for strips and
+//   fans); draw GL_TRIANGLES with those indices, with GL_CULL_FACE and GL_CLIP_DISTANCE0
+//   disabled. Transform feedback of the GS output (GL_TRIANGLES) is VertexPipeline's
 //   Geometry::tris for the same PRIM.
 bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::string& out, std::string* err = nullptr);
 
@@ -240,10 +243,22 @@ bool generateHwGeometryShader(const HwVsKey& key, const HostCaps& caps, std::str
 namespace hwuniform {
 inline constexpr const char* kBlock = "u_hw";          // uvec4[kHwVsUniformVec4]: HwVsUniforms
 inline constexpr const char* kVertexBytes = "u_vtx";   // usamplerBuffer (R8UI): the draw's vertex bytes
+inline constexpr const char* kRingIds = "u_ring";      // usamplerBuffer (R8UI): strip/fan triangle number mod 6
 inline constexpr const char* kNdcScale = "u_ndcScale";  // vec2: as shader_gen.h uniform::kNdcScale
                                                         // (read by the geometry shader)
 }  // namespace hwuniform
 // Texture unit suggested for u_vtx (units 0–3 are the fragment shader's, shader_gen.h).
 inline constexpr int kUnitVertexBytes = 4;
+// Texture unit suggested for u_ring (5 and 6 are the fragment shader's, shader_gen.h).
+inline constexpr int kUnitRingIds = 7;
+
+// The triangle list a GE triangle PRIM is drawn as (see the geometry shader's contract above).
+// `primKind` as HwVsKey::primKind; `seq` the PRIM's `count` vertex numbers in draw order (the
+// rebased indices, or 0..count-1). Appends 3 indices per triangle, each plus `base`, to `indices`
+// and, for strips and fans, the triangle's number in its PRIM mod 6 to `ringIds` (R8UI texels of
+// u_ring, one per triangle). A list drops an incomplete last triangle, a strip or fan of fewer
+// than 3 vertices gives none, as GL draws them.
+void hwTriangleList(u8 primKind, const u32* seq, u32 count, u32 base, std::vector<u32>& indices,
+                    std::vector<u8>& ringIds);
 
 }  // namespace ge::shadergen

@@ -19,6 +19,20 @@ u32 vtypeOf(const HwVsKey& k) {
 
 }  // namespace
 
+void hwTriangleList(u8 primKind, const u32* seq, u32 count, u32 base, std::vector<u32>& indices,
+                    std::vector<u8>& ringIds) {
+    if (primKind == 0) {
+        for (u32 i = 0; i + 3 <= count; i += 3)
+            indices.insert(indices.end(), {seq[i] + base, seq[i + 1] + base, seq[i + 2] + base});
+        return;
+    }
+    for (u32 i = 0; i + 3 <= count; ++i) {
+        const u32 a = primKind == 2 ? seq[0] : seq[i + (i & 1)], b = primKind == 2 ? seq[i + 1] : seq[i + 1 - (i & 1)];
+        indices.insert(indices.end(), {a + base, b + base, seq[i + 2] + base});
+        ringIds.push_back(u8(i % 6));
+    }
+}
+
 u32 hwVsStride(const HwVsKey& k) {
     return u32(VertexLayout::fromVtype(vtypeOf(k)).size) * u32(k.morphCount ? k.morphCount : 1);
 }

@@ -546,7 +546,8 @@ TEST(GlHwClip, EachRuleIsNeeded) {
     };
     const Break breaks[] = {
         {"strip ring", "#if GE_PRIM == 1", "#if GE_PRIM == 99"},
-        {"fan ring", "if ((gl_PrimitiveIDIn & 1) != 0) {", "if (false) {"},
+        {"fan ring", "if ((id & 1) != 0) {", "if (false) {"},
+        {"ring ids", "int(texelFetch(u_ring, gl_PrimitiveIDIn).r)", "0"},
         {"colour weights", "r.col = (a.col * (256 - k) + b.col * k) / 256;", "r.col = ivec4(mix(vec4(a.col), vec4(b.col), t));"},
         {"lerp direction", "o[n] = lerpV(inp[j], inp[i], fdiv(dq, den));",
          "o[n] = lerpV(inp[i], inp[j], fdiv(dp, dp - dq));"},

@@ -38,7 +38,7 @@ struct GsEdit {
 
 struct Harness {
     std::unique_ptr<gl::GlContext> ctx;
-    GLuint vao = 0, vtxBuf = 0, vtxTex = 0, tfb = 0, ebo = 0;
+    GLuint vao = 0, vtxBuf = 0, vtxTex = 0, tfb = 0, ebo = 0, ringBuf = 0, ringTex = 0;
     std::string error;
     std::map<std::string, GLuint> programs;  // llvmpipe compiles slowly: each program once
 
@@ -57,6 +57,8 @@ struct Harness {
         f.GenTextures(1, &vtxTex);
         f.GenBuffers(1, &tfb);
         f.GenBuffers(1, &ebo);
+        f.GenBuffers(1, &ringBuf);
+        f.GenTextures(1, &ringTex);
         return true;
     }
 
@@ -138,22 +140,34 @@ struct Harness {
         f.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, vtxBuf);
         f.ActiveTexture(GL_TEXTURE0);
         f.Uniform1i(f.GetUniformLocation(prog, sg::hwuniform::kVertexBytes), sg::kUnitVertexBytes);
+        f.Uniform1i(f.GetUniformLocation(prog, sg::hwuniform::kRingIds), sg::kUnitRingIds);  // -1: no strip/fan
         f.Uniform4uiv(f.GetUniformLocation(prog, sg::hwuniform::kBlock), sg::kHwVsUniformVec4,
                       reinterpret_cast<const GLuint*>(&u));
         f.Uniform2f(f.GetUniformLocation(prog, sg::hwuniform::kNdcScale), ndcX, ndcY);
     }
 
-    // glDrawArrays(mode, 0, count), or glDrawElements with `indices` (u16) when not empty, as
-    // the translator draws (no GL culling, no clip distance).
+    // The PRIM of `mode` (GL_TRIANGLES, _STRIP, _FAN) over vertices 0..count-1, or over `indices`
+    // when not empty, as the translator draws it: the triangle list of sg::hwTriangleList with
+    // the ring ids in u_ring (no GL culling, no clip distance).
     void draw(GLenum mode, int count, const std::vector<u16>& indices) const {
         const gl::GlFuncs& f = ctx->f();
-        if (indices.empty()) {
-            f.DrawArrays(mode, 0, count);
-            return;
-        }
+        std::vector<u32> seq(indices.begin(), indices.end());
+        if (indices.empty())
+            for (int i = 0; i < count; ++i) seq.push_back(u32(i));
+        const u8 primKind = mode == GL_TRIANGLE_STRIP ? 1 : (mode == GL_TRIANGLE_FAN ? 2 : 0);
+        std::vector<u32> list;
+        std::vector<u8> ringIds;
+        sg::hwTriangleList(primKind, seq.data(), u32(seq.size()), 0, list, ringIds);
+        f.BindBuffer(GL_TEXTURE_BUFFER, ringBuf);
+        f.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(ringIds.size() + 16), nullptr, GL_STATIC_DRAW);
+        f.BufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(ringIds.size()), ringIds.data());
+        f.ActiveTexture(GL_TEXTURE0 + sg::kUnitRingIds);
+        f.BindTexture(GL_TEXTURE_BUFFER, ringTex);
+        f.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, ringBuf);
+        f.ActiveTexture(GL_TEXTURE0);
         f.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
-        f.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * 2), indices.data(), GL_STATIC_DRAW);
-        f.DrawElements(mode, GLsizei(indices.size()), GL_UNSIGNED_SHORT, nullptr);
+        f.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(list.size() * 4), list.data(), GL_STATIC_DRAW);
+        f.DrawElements(GL_TRIANGLES, GLsizei(list.size()), GL_UNSIGNED_INT, nullptr);
     }
 
     // The geometry shader's output vertices for a draw. The buffer is filled with NaN first; every

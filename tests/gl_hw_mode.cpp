@@ -514,6 +514,58 @@ TEST(GlHwMode, ContinuationAfterAGpuDrawnStrip) {
     EXPECT_GT(covered, 10000u);
 }
 
+// Consecutive GPU-path draws with the same state become one GL draw (GpuVertexPath::join): a
+// one-triangle fan, then the near-clip fan of near_clip_scene.h with a fifth vertex. Joined, the
+// second fan's triangles are triangles 1-3 of the GL draw, but the geometry shader must still
+// take its second triangle (C, B, D) as odd (the ring ids, shadergen::hwTriangleList): taken as
+// even it would keep the wedge piece at (470, 180) that the reference drops. The fifth vertex E
+// lies right of D; (C, D, E) crosses the near plane with both new vertices beyond x = 4096, so
+// nothing of it is drawn. A MAC command between the draws (a uniform the vertex colours hide)
+// keeps them apart: one GL draw more, the same pixels.
+TEST(GlHwMode, ConsecutiveGpuDrawsOfOneStateJoinIntoOneGlDraw) {
+    auto build = [](ListBuilder& b, bool apart) {
+        testscene::nearClipFrame(b, false);
+        constexpr u32 vtype = vt::COL_8888 | vt::POS_F;
+        auto vtx = [](float x, float y, float z) {
+            BuildVertex v;
+            v.x = x, v.y = y, v.z = z;
+            v.color = 0xFFFFFFFFu;
+            return v;
+        };
+        const BuildVertex small[3] = {vtx(-0.9f, -0.9f, 1), vtx(-0.7f, -0.9f, 1), vtx(-0.8f, -0.7f, 1)};
+        const auto first = packVertices(vtype, small, 3);
+        b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 3, nullptr, first.data());
+        if (apart) b.cmd(GE_CMD_MAC, 0x123456);
+        const BuildVertex fan[5] = {vtx(0, 0.9f, -0.5f), vtx(-0.5f, -0.5f, 1), vtx(0.5f, -0.5f, 1), vtx(5, -0.5f, 1),
+                                    vtx(6, -0.4f, 1)};
+        const auto second = packVertices(vtype, fan, 5);
+        b.drawArrayData(GE_PRIM_TRIANGLE_FAN, vtype, 5, nullptr, second.data());
+    };
+    gl::GlOptions o = hwOptions(1);
+    o.vertices = gl::GlOptions::Vertices::Gpu;
+    u64 glDraws[2] = {};
+    for (bool apart : {false, true}) {
+        SCOPED_TRACE(apart ? "MAC between the draws" : "one state");
+        Memory mem;
+        std::string err;
+        auto r = gl::createGlRenderer(mem, o, err);
+        if (!r) GTEST_SKIP() << err;
+        const std::vector<u8> vram = runListVram(mem, *r, [&](ListBuilder& b) { build(b, apart); });
+        EXPECT_EQ(r->stats().gpuVertexDraws, 2u);
+        glDraws[apart] = r->stats().glDrawCalls;
+        auto rgb = [&](int x, int y) { return readLE32(&vram[(size_t(y) * 512 + size_t(x)) * 4]) & 0xFFFFFF; };
+        EXPECT_EQ(rgb(testscene::kFanProbeFirst.x, testscene::kFanProbeFirst.y), 0xFFFFFFu);
+        EXPECT_EQ(rgb(testscene::kFanWedgeX, testscene::kFanWedgeY), 0u);
+        EXPECT_EQ(rgb(48, 250), 0xFFFFFFu);  // the small fan
+        std::vector<u8> soft;
+        renderVram(nullptr, [&](ListBuilder& b) { build(b, apart); }, soft, err);
+        size_t covered = 0;
+        EXPECT_EQ(pixelsApart(vram, soft, covered), 0u);
+        EXPECT_GT(covered, 40000u);
+    }
+    EXPECT_EQ(glDraws[1], glDraws[0] + 1);
+}
+
 // A Bezier patch with the vertex work on the GPU: the CPU tessellates (geo::tessellatePatch), the
 // vertex shader transforms the generated float vertices (GpuVertexPath::preparePatch), as
 // PPSSPP's GL backend does with its CPU tessellation. The pixels are the software model's, colours

@@ -526,6 +526,35 @@ bool verbose() { return std::getenv("GE2GL_HW_VERBOSE") != nullptr; }
 // ---------------------------------------------------------------------------------------------
 // Tests.
 
+// The triangle list a PRIM is drawn as: strip triangle i in the CPU's winding (i, i + 1, i + 2),
+// odd ones (i + 1, i, i + 2); fan triangle i as (0, i + 1, i + 2); ring ids i mod 6; a list's
+// incomplete last triangle and strips or fans under 3 vertices dropped; `base` added.
+TEST(GlHwVertex, PrimsBecomeTriangleListsWithRingIds) {
+    const u32 seq[8] = {10, 11, 12, 13, 14, 15, 16, 17};
+    std::vector<u32> idx;
+    std::vector<u8> ring;
+    sg::hwTriangleList(1, seq, 8, 0, idx, ring);
+    EXPECT_EQ(idx, (std::vector<u32>{10, 11, 12, 12, 11, 13, 12, 13, 14, 14, 13, 15, 14, 15, 16, 16, 15, 17}));
+    EXPECT_EQ(ring, (std::vector<u8>{0, 1, 2, 3, 4, 5}));
+    idx.clear(), ring.clear();
+    sg::hwTriangleList(2, seq, 5, 100, idx, ring);
+    EXPECT_EQ(idx, (std::vector<u32>{110, 111, 112, 110, 112, 113, 110, 113, 114}));
+    EXPECT_EQ(ring, (std::vector<u8>{0, 1, 2}));
+    idx.clear(), ring.clear();
+    sg::hwTriangleList(0, seq, 8, 0, idx, ring);
+    EXPECT_EQ(idx, (std::vector<u32>{10, 11, 12, 13, 14, 15}));
+    EXPECT_TRUE(ring.empty());
+    idx.clear();
+    sg::hwTriangleList(1, seq, 2, 0, idx, ring);
+    sg::hwTriangleList(2, seq, 2, 0, idx, ring);
+    EXPECT_TRUE(idx.empty() && ring.empty());
+    std::vector<u32> longStrip(20, 0);
+    sg::hwTriangleList(1, longStrip.data(), 20, 0, idx, ring);
+    ASSERT_EQ(ring.size(), 18u);
+    EXPECT_EQ(ring[6], 0u);
+    EXPECT_EQ(ring[17], 5u);
+}
+
 TEST(GlHwVertex, KeysAreCanonicalAndDescribed) {
     Rig a;
     a.st.reset();

@@ -123,12 +123,12 @@ bool GlRendererImpl::makeSetup(const GeState& st, const shadergen::DrawFlags& fl
         TextureCache::sourceRange(st, levels, srcBegin, srcEnd);
         const u32 lin = Memory::drawingAddress(srcBegin);
         const u32 linEnd = lin + (srcEnd - srcBegin);
-        if (!geo_.empty() && batchOverlaps(lin, linEnd)) flush();
+        if (pending() && batchOverlaps(lin, linEnd)) flush();
         const u64 wb = fb_.writeBacks();
         fb_.syncRange(lin, std::max<u32>(linEnd - lin, 1));
         if (fb_.writeBacks() != wb) ++generation_;
         // A re-upload reuses the GL texture object: draw what is pending with the old contents.
-        if (!geo_.empty() && generation_ != batchGeneration_) flush();
+        if (pending() && generation_ != batchGeneration_) flush();
         const bool clut = st.textureFormat() >= GE_TFMT_CLUT4 && st.textureFormat() <= GE_TFMT_CLUT32;
         // The palette changes only with a CLUT load (DIRTY_CLUT), which remakes the key cache.
         if (clut && !kc.clutHashed) kc.clutHash = shadergen::hashBytes(st.clut, sizeof st.clut), kc.clutHashed = true;
@@ -174,7 +174,7 @@ GlRendererImpl::GpuDrawState GlRendererImpl::gpuDrawState(const GeState& st) {
 bool GlRendererImpl::drawPrimOnGpu(const PrimPacket& p) {
     const GeState& st = *p.state;
     const GpuDrawState g = gpuDrawState(st);
-    if (!gpu_.prepare(mem_, st, p, g.texture, g.fog, g.cull, st.CULL_ccw(), g.dstTexture, gpuDraw_)) return false;
+    if (!gpu_.prepare(mem_, st, p, g.texture, g.fog, g.cull, g.dstTexture, gpuDraw_)) return false;
     // A PRIM type 7 after this one continues from its open vertices (on the CPU path).
     pipeline_.keepOpenVertices(mem_, st, p);
     submitGpuDraw(st, g.flags);
@@ -195,7 +195,7 @@ bool GlRendererImpl::drawPatchOnGpu(const PatchPacket& p) {
         // The tessellator generates normals when lighting needs them (geo::DrawFrontEnd::patch).
         const VertexReader probe(mem_, st, p.vtype);
         if (!gpu_.preparePatch(st, tess_, probe.hasColor(), probe.hasNormal() || st.LTE_on(), g.texture, g.fog,
-                               g.cull, st.CULL_ccw(), gpuDraw_))
+                               gpuDraw_))
             return false;
         submitGpuDraw(st, g.flags);
     }
@@ -205,14 +205,31 @@ bool GlRendererImpl::drawPatchOnGpu(const PatchPacket& p) {
     return true;
 }
 
-// Draws gpuDraw_ (prepared by GpuVertexPath) with the draw's fragment state.
+// Queues gpuDraw_ (prepared by GpuVertexPath) with the draw's fragment state: joined to the
+// waiting GPU draws when the setup (fragment state, targets, texture) and the vertex key and
+// uniforms are the same (GpuVertexPath::joinable), else after drawing what waits. Consecutive
+// draws of one object differ mostly in their vertex addresses (--stats glDrawCalls).
 void GlRendererImpl::submitGpuDraw(const GeState& st, const shadergen::DrawFlags& flags) {
     DrawSetup s;
     if (!makeSetup(st, flags, s)) {
         flush();
         return;
     }
-    flush();  // what the CPU path has batched draws first
+    if (gpuBatch_.draws != 0 && std::memcmp(&s, &batchSetup_, sizeof s) == 0 &&
+        GpuVertexPath::joinable(gpuBatch_, gpuDraw_)) {
+        GpuVertexPath::join(gpuBatch_, gpuDraw_);
+        return;
+    }
+    flush();  // what waits (CPU triangles or GPU draws) draws first
+    std::memcpy(static_cast<void*>(&batchSetup_), &s, sizeof s);
+    batchGeneration_ = generation_;
+    std::swap(gpuBatch_, gpuDraw_);  // gpuDraw_ keeps the old batch's capacity for the next draw
+}
+
+// Draws the waiting GPU draws as one GL draw.
+void GlRendererImpl::flushGpu() {
+    const DrawSetup& s = batchSetup_;
+    gpuBatch_.draws = 0;
     Target* ct = fb_.colorTarget(s.colorAddr, s.colorStride, GeBufferFormat(s.colorFormat), s.scissor[3] + 1);
     if (!ct) return;
     const bool depthOnColor = s.useDepth && s.depthStride &&
@@ -221,7 +238,7 @@ void GlRendererImpl::submitGpuDraw(const GeState& st, const shadergen::DrawFlags
                                              : nullptr;
     const u64 compiles = programs_.stats().compiles + programs_.stats().diskHits;
     std::string err;
-    const Program* prog = programs_.getHw(gpuDraw_.key, s.fs, &err);
+    const Program* prog = programs_.getHw(gpuBatch_.key, s.fs, &err);
     if (programs_.stats().compiles + programs_.stats().diskHits != compiles) state_.programsCreated();
     if (!prog) {
         noteError(err);
@@ -229,8 +246,7 @@ void GlRendererImpl::submitGpuDraw(const GeState& st, const shadergen::DrawFlags
     }
     fb_.bindDraw(ct, dt);
     state_.apply(s, *prog, 0, 0);
-    gpu_.draw(gpuDraw_, *prog);
-    ++stats_.glDrawCalls;
+    if (gpu_.draw(gpuBatch_, *prog)) ++stats_.glDrawCalls;
     // Without CPU geometry the drawn area is bounded by the scissor.
     const Rect drawn{s.scissor[0], s.scissor[1], s.scissor[2], s.scissor[3]};
     const bool colorWrites = s.fs.dstRead != shadergen::DstRead::None || s.ff.colorMask[0] || s.ff.colorMask[1] ||
@@ -252,6 +268,7 @@ bool GlRendererImpl::batchOverlaps(u32 begin, u32 end) const {
 }
 
 void GlRendererImpl::flush() {
+    if (gpuBatch_.draws != 0) flushGpu();
     if (geo_.empty()) return;
     const DrawSetup& s = batchSetup_;
     const std::vector<GlVertex>& verts = geo_.tris;

@@ -19,8 +19,8 @@
 
 namespace ge::gl {
 
-// Texture units the translator binds (shader_gen.h kUnit*, hw_vertex.h kUnitVertexBytes), plus
-// margin: 0..7.
+// Texture units the translator binds: 0..7 (shader_gen.h kUnit*, hw_vertex.h kUnitVertexBytes
+// and kUnitRingIds).
 constexpr int kHostUnits = 8;
 
 struct HostGlState {

@@ -74,7 +74,7 @@ void GlRendererImpl::hostMayHaveWritten(bool frameBuffers) {
 
 bool GlRendererImpl::holdsNewerThanMemory(u32 addr, u32 size) const {
     // A batch not yet drawn may write anywhere in its targets; otherwise the dirty targets.
-    return !geo_.empty() || fb_.dirtyOverlaps(addr, size);
+    return pending() || fb_.dirtyOverlaps(addr, size);
 }
 
 void GlRendererImpl::takeDirtyRanges(std::vector<std::pair<u32, u32>>& out) {

@@ -23,7 +23,7 @@ namespace {
 
 // The host's bindings of every unit the translator uses are kept (gl_host_state.h).
 static_assert(shadergen::kUnitGradients < kHostUnits && shadergen::kUnitClut < kHostUnits &&
-              shadergen::kUnitVertexBytes < kHostUnits);
+              shadergen::kUnitVertexBytes < kHostUnits && shadergen::kUnitRingIds < kHostUnits);
 
 shadergen::HostCaps hostCapsFor(const GlCaps& caps, const GlOptions& opt) {
     // Hardware mode rasterises natively: attributes interpolated by GL (the float path).

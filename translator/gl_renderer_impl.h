@@ -103,7 +103,11 @@ private:
     bool drawPatchOnGpu(const PatchPacket& p);
     void submitGpuDraw(const GeState& st, const shadergen::DrawFlags& flags);
     bool batchOverlaps(u32 begin, u32 end) const;
+    // Whether draws wait in a batch: the CPU path's triangles (geo_) or the GPU path's joined
+    // draws (gpuBatch_); at most one of them at a time, both with batchSetup_.
+    bool pending() const { return !geo_.empty() || gpuBatch_.draws != 0; }
     void flush();
+    void flushGpu();
 
     // gl_rtt_transfer.cpp
     bool transferOnGpu(const TransferPacket& t);
@@ -134,7 +138,8 @@ private:
     const int scale_;
     VertexPipeline pipeline_{opt_.accuracy};
     GpuVertexPath gpu_;
-    GpuDraw gpuDraw_;
+    GpuDraw gpuDraw_;   // the draw being prepared
+    GpuDraw gpuBatch_;  // GPU draws waiting (draws != 0), joined into one GL draw (flushGpu)
     geo::TessOutput tess_;  // the GPU path's patch tessellation (reused)
     u64 batchGeneration_ = 0;
     Geometry geo_;

@@ -84,7 +84,7 @@ bool GlRendererImpl::sampleTarget(const GeState& st, DrawSetup& s) {
     }
     // Pending draws into the source target first (the batch may be drawing into it).
     const u32 lin = Memory::drawingAddress(st.textureAddr(0));
-    if (!geo_.empty() && batchOverlaps(lin, lin + 1)) flush();
+    if (pending() && batchOverlaps(lin, lin + 1)) flush();
     const u32 px = off / t->bpp();
     s.fs.texTarget = u8(1 + t->fmt);
     s.fs.texFormat = u8(tf);

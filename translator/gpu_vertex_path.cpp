@@ -34,12 +34,22 @@ GpuVertexPath::GpuVertexPath(const GlContext& ctx, const geo::AccuracyProfile& a
     gl.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, vtxBuf_);
     gl.ActiveTexture(GL_TEXTURE0);
     gl.GenBuffers(1, &idxBuf_);
+    gl.GenBuffers(1, &ringBuf_);
+    gl.BindBuffer(GL_TEXTURE_BUFFER, ringBuf_);
+    gl.BufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_STREAM_DRAW);
+    gl.GenTextures(1, &ringTex_);
+    gl.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitRingIds));
+    gl.BindTexture(GL_TEXTURE_BUFFER, ringTex_);
+    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, ringBuf_);
+    gl.ActiveTexture(GL_TEXTURE0);
 }
 
 GpuVertexPath::~GpuVertexPath() {
     const GlFuncs& gl = ctx_.f();
     gl.DeleteTextures(1, &vtxTex_);
+    gl.DeleteTextures(1, &ringTex_);
     gl.DeleteBuffers(1, &vtxBuf_);
+    gl.DeleteBuffers(1, &ringBuf_);
     gl.DeleteBuffers(1, &idxBuf_);
 }
 
@@ -63,20 +73,21 @@ bool latchedAttributeUsed(const GeState& st, const VertexReader& reader, bool te
 }  // namespace
 
 bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPacket& p, bool texture, bool fog,
-                            bool cull, bool cullCcw, bool dstTexture, GpuDraw& out) {
-    GLenum mode;
+                            bool cull, bool dstTexture, GpuDraw& out) {
+    // HwVsKey::primKind: the geometry shader does what needs the whole primitive (the discard
+    // rules, near clipping in the reference's vertex order, which depends on the kind, culling).
+    u8 primKind;
     switch (p.prim) {
-        case GE_PRIM_TRIANGLES: mode = GL_TRIANGLES; break;
-        case GE_PRIM_TRIANGLE_STRIP: mode = GL_TRIANGLE_STRIP; break;
-        case GE_PRIM_TRIANGLE_FAN: mode = GL_TRIANGLE_FAN; break;
+        case GE_PRIM_TRIANGLES: primKind = 0; break;
+        case GE_PRIM_TRIANGLE_STRIP: primKind = 1; break;
+        case GE_PRIM_TRIANGLE_FAN: primKind = 2; break;
         default: return reject(CpuReason::PrimKind);
     }
     if (p.continuation) return reject(CpuReason::Continuation);
     // The reference draws rectangle-shaped quads at the start of an even strip (and a 4-vertex
     // fan) as rectangles when culling is off (geometry/assembly.h): that needs the transformed
     // positions, so such draws stay on the CPU.
-    if (!cull && ((mode == GL_TRIANGLE_STRIP && p.count >= 4 && p.count % 2 == 0) ||
-                  (mode == GL_TRIANGLE_FAN && p.count == 4)))
+    if (!cull && ((primKind == 1 && p.count >= 4 && p.count % 2 == 0) || (primKind == 2 && p.count == 4)))
         return reject(CpuReason::Quad);
     if (!passesCommonChecks(st, texture, dstTexture)) return false;
 
@@ -84,20 +95,13 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
     if (latchedAttributeUsed(st, reader, texture)) return reject(CpuReason::Latched);
     if (!reader.readIndices(p.indexAddr, p.count, rawIndices_)) return reject(CpuReason::Memory);
     out.key = shadergen::hwVsKeyFromState(st, texture, fog);
-    // The geometry shader does what needs the whole primitive: the discard rules, near clipping
-    // in the reference's vertex order (which needs the primitive kind), culling.
-    out.key.primKind = mode == GL_TRIANGLE_STRIP ? 1 : (mode == GL_TRIANGLE_FAN ? 2 : 0);
+    out.key.primKind = primKind;
     out.key.sampleCentre = acc_.pspTriangleSampleCentre ? 1 : 0;
     const u32 stride = shadergen::hwVsStride(out.key);
     if (stride == 0) return reject(CpuReason::Memory);
-    out.mode = mode;
-    out.count = p.count;
-    out.cull = cull;
-    out.cullCcw = cullCcw;
-    out.indexed = reader.indexSize() != 0;
-    out.indices.clear();
     // The bytes of the vertices the draw uses: the index range when it is dense, else each used
-    // vertex gathered (indices remapped). Vertex i of the buffer starts at i·stride.
+    // vertex gathered. Vertex i of the buffer starts at i·stride; rawIndices_ (0..count-1 without
+    // indices) become the draw's vertex numbers in that buffer.
     u32 lo = ~0u, hi = 0;
     for (u32 i : rawIndices_) lo = std::min(lo, i), hi = std::max(hi, i);
     const u64 span = u64(hi - lo) + 1;
@@ -107,13 +111,9 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
         const u8* src = mem.ptr(u32(first), u32(bytes));
         if (!src) return reject(CpuReason::Memory);
         out.bytes.assign(src, src + bytes);
-        if (out.indexed) {
-            out.indices.resize(rawIndices_.size());
-            for (size_t k = 0; k < rawIndices_.size(); ++k) out.indices[k] = rawIndices_[k] - lo;
-        }
+        for (u32& i : rawIndices_) i -= lo;
     } else {
         out.bytes.clear();
-        out.indices.resize(rawIndices_.size());
         std::vector<std::pair<u32, u32>> order;  // (guest index, position in the draw)
         order.reserve(rawIndices_.size());
         for (u32 k = 0; k < rawIndices_.size(); ++k) order.emplace_back(rawIndices_[k], k);
@@ -127,10 +127,14 @@ bool GpuVertexPath::prepare(const Memory& mem, const GeState& st, const PrimPack
                 out.bytes.insert(out.bytes.end(), src, src + stride);
                 ++next;
             }
-            out.indices[order[k].second] = next - 1;
+            rawIndices_[order[k].second] = next - 1;
         }
-        out.indexed = true;
     }
+    out.indices.clear();
+    out.ringIds.clear();
+    shadergen::hwTriangleList(out.key.primKind, rawIndices_.data(), u32(rawIndices_.size()), 0, out.indices,
+                              out.ringIds);
+    out.draws = 1;
     shadergen::hwVsUniformsFromState(st, st.op(GE_CMD_VTYPE), out.uniforms, acc_, &fold_);
     ++stats_.gpu;
     return true;
@@ -151,7 +155,7 @@ bool GpuVertexPath::acceptPatch(const GeState& st, const PatchPacket& p, bool te
 }
 
 bool GpuVertexPath::preparePatch(const GeState& st, const geo::TessOutput& tess, bool hasColor, bool hasNormal,
-                                 bool texture, bool fog, bool cull, bool cullCcw, GpuDraw& out) {
+                                 bool texture, bool fog, GpuDraw& out) {
     const size_t n = tess.verts.size();
     for (u32 i : tess.indices)
         if (i >= n) return reject(CpuReason::Memory);
@@ -163,12 +167,9 @@ bool GpuVertexPath::preparePatch(const GeState& st, const geo::TessOutput& tess,
     out.key.primKind = 0;
     out.key.sampleCentre = acc_.pspTriangleSampleCentre ? 1 : 0;
     const VertexLayout l = VertexLayout::fromVtype(vtype);
-    out.mode = GL_TRIANGLES;
-    out.count = u32(tess.indices.size());
-    out.cull = cull;
-    out.cullCcw = cullCcw;
-    out.indexed = true;
-    out.indices.assign(tess.indices.begin(), tess.indices.end());
+    out.indices.assign(tess.indices.begin(), tess.indices.end() - std::ptrdiff_t(tess.indices.size() % 3));
+    out.ringIds.clear();
+    out.draws = 1;
     // The guest's own float vertices are little-endian, as the hosts ge2gl runs on: the shader
     // reads these bytes as it reads the guest's.
     out.bytes.assign(n * l.size, 0);
@@ -185,27 +186,47 @@ bool GpuVertexPath::preparePatch(const GeState& st, const geo::TessOutput& tess,
     return true;
 }
 
-void GpuVertexPath::draw(const GpuDraw& d, const Program& prog) {
+bool GpuVertexPath::joinable(const GpuDraw& batch, const GpuDraw& next) {
+    return batch.bytes.size() + next.bytes.size() <= 65536 && batch.ringIds.size() + next.ringIds.size() <= 65536 &&
+           std::memcmp(&batch.key, &next.key, sizeof batch.key) == 0 &&
+           std::memcmp(&batch.uniforms, &next.uniforms, sizeof batch.uniforms) == 0;
+}
+
+void GpuVertexPath::join(GpuDraw& batch, const GpuDraw& next) {
+    const u32 base = u32(batch.bytes.size() / shadergen::hwVsStride(batch.key));
+    batch.bytes.insert(batch.bytes.end(), next.bytes.begin(), next.bytes.end());
+    const size_t at = batch.indices.size();
+    batch.indices.insert(batch.indices.end(), next.indices.begin(), next.indices.end());
+    for (size_t k = at; k < batch.indices.size(); ++k) batch.indices[k] += base;
+    batch.ringIds.insert(batch.ringIds.end(), next.ringIds.begin(), next.ringIds.end());
+    batch.draws += next.draws;
+}
+
+bool GpuVertexPath::draw(const GpuDraw& d, const Program& prog) {
+    if (d.indices.empty()) return false;
     const GlFuncs& gl = ctx_.f();
     gl.BindBuffer(GL_TEXTURE_BUFFER, vtxBuf_);
     gl.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(std::max<size_t>(d.bytes.size(), 4)), nullptr, GL_STREAM_DRAW);
     gl.BufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(d.bytes.size()), d.bytes.data());
     gl.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitVertexBytes));
     gl.BindTexture(GL_TEXTURE_BUFFER, vtxTex_);
+    if (d.key.primKind != 0) {
+        gl.BindBuffer(GL_TEXTURE_BUFFER, ringBuf_);
+        gl.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(d.ringIds.size()), d.ringIds.data(), GL_STREAM_DRAW);
+        gl.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitRingIds));
+        gl.BindTexture(GL_TEXTURE_BUFFER, ringTex_);
+    }
     gl.ActiveTexture(GL_TEXTURE0);
     if (prog.hwBlock >= 0)
         gl.Uniform4uiv(prog.hwBlock, shadergen::kHwVsUniformVec4, reinterpret_cast<const GLuint*>(&d.uniforms));
     // Culling, near clipping and the discard rules happen in the geometry shader (hw_geometry.cpp):
     // no GL face culling (clipped pieces can be wound against their primitive, as on the CPU)
     // and no clip distances.
-    if (d.indexed) {
-        gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, idxBuf_);
-        gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(d.indices.size() * sizeof(u32)), d.indices.data(),
-                      GL_STREAM_DRAW);
-        gl.DrawElements(d.mode, GLsizei(d.count), GL_UNSIGNED_INT, nullptr);
-    } else {
-        gl.DrawArrays(d.mode, 0, GLsizei(d.count));
-    }
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, idxBuf_);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(d.indices.size() * sizeof(u32)), d.indices.data(),
+                  GL_STREAM_DRAW);
+    gl.DrawElements(GL_TRIANGLES, GLsizei(d.indices.size()), GL_UNSIGNED_INT, nullptr);
+    return true;
 }
 
 }  // namespace ge::gl

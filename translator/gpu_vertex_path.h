@@ -39,16 +39,15 @@
 
 namespace ge::gl {
 
-// One draw, prepared on the CPU before any GL call.
+// One draw, prepared on the CPU before any GL call, or several joined (GpuVertexPath::join):
+// a GL_TRIANGLES list in the geometry shader's form (shadergen::hwTriangleList).
 struct GpuDraw {
     shadergen::HwVsKey key;
     shadergen::HwVsUniforms uniforms;
-    GLenum mode = GL_TRIANGLES;
-    u32 count = 0;           // vertices (indices) to draw
-    bool indexed = false;    // indices (rebased) in `indices`, else vertices 0..count-1
-    std::vector<u8> bytes;   // vertex bytes, vertex i at i * stride
-    std::vector<u32> indices;
-    bool cull = false, cullCcw = false;
+    std::vector<u8> bytes;     // vertex bytes, vertex i at i * stride
+    std::vector<u32> indices;  // 3 per triangle, into `bytes`
+    std::vector<u8> ringIds;   // strips and fans: per triangle, its number in its PRIM mod 6
+    u32 draws = 0;             // GE draws joined in it
 };
 
 // Why a draw stays on the CPU (indices into GpuVertexStats::cpu).
@@ -70,8 +69,9 @@ public:
 
     // Prepares `out` for the GPU path; false (reason counted) when the draw stays on the CPU.
     // `dstTexture`: the fragment shader reads the destination through a texture.
+    // `cull`: culling on (the draw's culling itself is in the uniforms).
     bool prepare(const Memory& mem, const GeState& st, const PrimPacket& p, bool texture, bool fog, bool cull,
-                 bool cullCcw, bool dstTexture, GpuDraw& out);
+                 bool dstTexture, GpuDraw& out);
     // Bezier/spline patches, as PPSSPP's GL backend draws them with its CPU tessellation: the
     // vertices geo::tessellatePatch generates (model space) go through the vertex shader as float
     // vertices — position, UV (read or generated), the normal when the control points have one
@@ -82,11 +82,20 @@ public:
     // `hasColor`/`hasNormal` as the CPU path reads the patch (geo::DrawFrontEnd::patch).
     bool acceptPatch(const GeState& st, const PatchPacket& p, bool texture, bool dstTexture);
     bool preparePatch(const GeState& st, const geo::TessOutput& tess, bool hasColor, bool hasNormal, bool texture,
-                      bool fog, bool cull, bool cullCcw, GpuDraw& out);
-    // Uploads the vertex bytes, indices and uniforms and draws with `prog` (already bound, with
-    // the fragment state applied). Leaves GL_CLIP_DISTANCE0 and face culling as it found them
-    // (off). The geometry shader culls and clips (hw_geometry.cpp).
-    void draw(const GpuDraw& d, const Program& prog);
+                      bool fog, GpuDraw& out);
+    // Whether `next` can be drawn in the same GL draw as `batch` (the caller has checked that
+    // their fragment state and targets are equal): the same key and uniforms, and the joined
+    // vertex bytes and ring ids each within the 65536 texels GL guarantees a buffer texture
+    // (shadergen/hw_vertex.h). Then `join` appends it
+    // (its indices rebased past batch's vertices). GL draws a draw call's primitives in order, so
+    // the joined draw writes what the separate ones did (as PPSSPP's DrawEngine joins draws).
+    static bool joinable(const GpuDraw& batch, const GpuDraw& next);
+    static void join(GpuDraw& batch, const GpuDraw& next);
+    // Uploads the vertex bytes, indices, ring ids and uniforms and draws with `prog` (already
+    // bound, with the fragment state applied); false when there is no triangle to draw. Leaves
+    // GL_CLIP_DISTANCE0 and face culling as it found them (off). The geometry shader culls and
+    // clips (hw_geometry.cpp).
+    bool draw(const GpuDraw& d, const Program& prog);
     const GpuVertexStats& stats() const { return stats_; }
 
 private:
@@ -99,7 +108,8 @@ private:
 
     const GlContext& ctx_;
     geo::AccuracyProfile acc_;
-    GLuint vtxBuf_ = 0, vtxTex_ = 0, idxBuf_ = 0;
+    GLuint vtxBuf_ = 0, vtxTex_ = 0, idxBuf_ = 0, ringBuf_ = 0, ringTex_ = 0;
+    std::vector<u32> seq_;  // 0..count-1 for a draw without indices
     GpuVertexStats stats_;
     std::vector<u32> rawIndices_;
     geo::MatrixFold fold_;  // world·view·proj while the matrices stay the same

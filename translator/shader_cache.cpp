@@ -238,6 +238,8 @@ void ProgramCache::lookupUniforms(Program& p) {
     if (clutTex >= 0) gl.Uniform1i(clutTex, shadergen::kUnitClut);
     const GLint vtx = loc(shadergen::hwuniform::kVertexBytes);
     if (vtx >= 0) gl.Uniform1i(vtx, shadergen::kUnitVertexBytes);
+    const GLint ring = loc(shadergen::hwuniform::kRingIds);
+    if (ring >= 0) gl.Uniform1i(ring, shadergen::kUnitRingIds);
     gl.UseProgram(0);
 }
 
