@@ -128,17 +128,23 @@ struct Harness {
         return prog;
     }
 
+    // `size` bytes (and 64 spare) in `buf`, read through the R8UI buffer texture `tex` on `unit`.
+    void byteTexture(GLuint buf, GLuint tex, int unit, const void* data, size_t size) const {
+        const gl::GlFuncs& f = ctx->f();
+        f.BindBuffer(GL_TEXTURE_BUFFER, buf);
+        f.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(size + 64), nullptr, GL_STATIC_DRAW);
+        f.BufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(size), data);
+        f.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+        f.BindTexture(GL_TEXTURE_BUFFER, tex);
+        f.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, buf);
+        f.ActiveTexture(GL_TEXTURE0);
+    }
+
     // The vertex bytes, u_hw and u_ndcScale for `prog`.
     void bindInputs(GLuint prog, const std::vector<u8>& bytes, const sg::HwVsUniforms& u, float ndcX, float ndcY) const {
         const gl::GlFuncs& f = ctx->f();
         f.UseProgram(prog);
-        f.BindBuffer(GL_TEXTURE_BUFFER, vtxBuf);
-        f.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(bytes.size() + 64), nullptr, GL_STATIC_DRAW);
-        f.BufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(bytes.size()), bytes.data());
-        f.ActiveTexture(GL_TEXTURE0 + sg::kUnitVertexBytes);
-        f.BindTexture(GL_TEXTURE_BUFFER, vtxTex);
-        f.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, vtxBuf);
-        f.ActiveTexture(GL_TEXTURE0);
+        byteTexture(vtxBuf, vtxTex, sg::kUnitVertexBytes, bytes.data(), bytes.size());
         f.Uniform1i(f.GetUniformLocation(prog, sg::hwuniform::kVertexBytes), sg::kUnitVertexBytes);
         f.Uniform1i(f.GetUniformLocation(prog, sg::hwuniform::kRingIds), sg::kUnitRingIds);  // -1: no strip/fan
         f.Uniform4uiv(f.GetUniformLocation(prog, sg::hwuniform::kBlock), sg::kHwVsUniformVec4,
@@ -158,13 +164,7 @@ struct Harness {
         std::vector<u32> list;
         std::vector<u8> ringIds;
         sg::hwTriangleList(primKind, seq.data(), u32(seq.size()), 0, list, ringIds);
-        f.BindBuffer(GL_TEXTURE_BUFFER, ringBuf);
-        f.BufferData(GL_TEXTURE_BUFFER, GLsizeiptr(ringIds.size() + 16), nullptr, GL_STATIC_DRAW);
-        f.BufferSubData(GL_TEXTURE_BUFFER, 0, GLsizeiptr(ringIds.size()), ringIds.data());
-        f.ActiveTexture(GL_TEXTURE0 + sg::kUnitRingIds);
-        f.BindTexture(GL_TEXTURE_BUFFER, ringTex);
-        f.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, ringBuf);
-        f.ActiveTexture(GL_TEXTURE0);
+        byteTexture(ringBuf, ringTex, sg::kUnitRingIds, ringIds.data(), ringIds.size());
         f.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, ebo);
         f.BufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(list.size() * 4), list.data(), GL_STATIC_DRAW);
         f.DrawElements(GL_TRIANGLES, GLsizei(list.size()), GL_UNSIGNED_INT, nullptr);

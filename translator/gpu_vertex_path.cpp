@@ -23,25 +23,27 @@ const char* cpuReasonName(CpuReason r) {
     }
 }
 
+namespace {
+
+// A byte buffer (R8UI buffer texture `tex` over `buf`) bound on `unit`.
+void makeByteBufferTexture(const GlFuncs& gl, int unit, GLuint& buf, GLuint& tex) {
+    gl.GenBuffers(1, &buf);
+    gl.BindBuffer(GL_TEXTURE_BUFFER, buf);
+    gl.BufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_STREAM_DRAW);
+    gl.GenTextures(1, &tex);
+    gl.ActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    gl.BindTexture(GL_TEXTURE_BUFFER, tex);
+    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, buf);
+    gl.ActiveTexture(GL_TEXTURE0);
+}
+
+}  // namespace
+
 GpuVertexPath::GpuVertexPath(const GlContext& ctx, const geo::AccuracyProfile& acc) : ctx_(ctx), acc_(acc) {
     const GlFuncs& gl = ctx_.f();
-    gl.GenBuffers(1, &vtxBuf_);
-    gl.BindBuffer(GL_TEXTURE_BUFFER, vtxBuf_);
-    gl.BufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_STREAM_DRAW);
-    gl.GenTextures(1, &vtxTex_);
-    gl.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitVertexBytes));
-    gl.BindTexture(GL_TEXTURE_BUFFER, vtxTex_);
-    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, vtxBuf_);
-    gl.ActiveTexture(GL_TEXTURE0);
+    makeByteBufferTexture(gl, shadergen::kUnitVertexBytes, vtxBuf_, vtxTex_);
+    makeByteBufferTexture(gl, shadergen::kUnitRingIds, ringBuf_, ringTex_);
     gl.GenBuffers(1, &idxBuf_);
-    gl.GenBuffers(1, &ringBuf_);
-    gl.BindBuffer(GL_TEXTURE_BUFFER, ringBuf_);
-    gl.BufferData(GL_TEXTURE_BUFFER, 16, nullptr, GL_STREAM_DRAW);
-    gl.GenTextures(1, &ringTex_);
-    gl.ActiveTexture(GLenum(GL_TEXTURE0 + shadergen::kUnitRingIds));
-    gl.BindTexture(GL_TEXTURE_BUFFER, ringTex_);
-    gl.TexBuffer(GL_TEXTURE_BUFFER, GL_R8UI, ringBuf_);
-    gl.ActiveTexture(GL_TEXTURE0);
 }
 
 GpuVertexPath::~GpuVertexPath() {
