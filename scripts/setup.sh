@@ -5,6 +5,7 @@ set -euo pipefail
 pkgs=(cmake ninja-build g++ pkg-config libosmesa6-dev libegl-dev libgl-dev libglm-dev libgtest-dev libgmock-dev
       libpng-dev libopenimageio-dev libzstd-dev libsnappy-dev libzip-dev libxxhash-dev libcli11-dev libbenchmark-dev zlib1g-dev
       nlohmann-json3-dev  # the tools' JSON files (tools/lib/json_io.h)
+      libjemalloc-dev  # the CLI's allocator (tools/cli_allocator.cpp; optional, found by pkg-config)
       clang libclang-rt-14-dev  # clang + its libFuzzer/sanitizer runtimes: scripts/fuzz.sh
       chromium parallel)  # tests only: the report's browser test (tests/tools_report.cpp), the README's
                           # GNU parallel recipe (scripts/check_parallel_recipe.sh)

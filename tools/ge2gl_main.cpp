@@ -31,7 +31,22 @@
 using namespace ge;
 namespace fs = std::filesystem;
 
+#ifdef GE2GL_JEMALLOC
+namespace ge::tools {
+std::string allocatorDescription();  // tools/cli_allocator.cpp
+}
+#endif
+
 namespace {
+
+// --version: the release and the allocator this build of the CLI runs with (tools/cli_allocator.cpp).
+std::string versionText() {
+#ifdef GE2GL_JEMALLOC
+    return "ge2gl 0.1.0\n" + tools::allocatorDescription();
+#else
+    return "ge2gl 0.1.0\nallocator: the C library's malloc";
+#endif
+}
 
 // A whole number from 0 to `max` in decimal digits: no sign, no wrap-around, no overflow.
 CLI::Validator wholeNumber(u64 max) {
@@ -282,7 +297,7 @@ struct Cli {
 
     Cli() {
         app.require_subcommand(1);
-        app.set_version_flag("--version", "ge2gl 0.1.0");
+        app.set_version_flag("--version", versionText());
         declareInspect();
         declareCompare();
         declareStepBench();
