@@ -6,7 +6,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <limits>
@@ -92,6 +96,54 @@ const OiioModule* oiio(std::string& err) {
     return &load.module;
 }
 
+// libpng reports a failure by calling pngError, which keeps its message here and longjmp()s back
+// into writePngStream.
+struct PngFailure {
+    char msg[200] = "libpng failed";
+};
+[[noreturn]] void pngError(png_structp png, png_const_charp msg) {
+    auto* f = static_cast<PngFailure*>(png_get_error_ptr(png));
+    std::snprintf(f->msg, sizeof f->msg, "%s", msg);
+    png_longjmp(png, 1);
+}
+void pngWarning(png_structp, png_const_charp) {}
+
+// The image as a PNG on `f`; false with libpng's message in `failure`. Written for speed, since the PNG is a
+// sizeable part of a short `ge2gl render` (docs/benchmarks.md, "Sixth round": Monster Hunter 3rd's
+// frame 14.5 ms with libpng's simplified writer and PNG_IMAGE_FLAG_FAST, 6.7 ms so, and smaller):
+// - an opaque image (every frame readFrame makes) is stored as RGB: a quarter fewer bytes to
+//   deflate, and the alpha a reader gets back is the same 255;
+// - no row filters and zlib level 1: a game frame's flat areas compress well without them.
+// The pixels a reader decodes are the same as before; only the file's bytes differ.
+// Only locals that libpng's longjmp may skip without harm (pointers, set before setjmp).
+bool writePngStream(std::FILE* f, const Image& img, PngFailure& failure) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, pngError, pngWarning);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    if (!info) {
+        png_destroy_write_struct(&png, nullptr);
+        std::snprintf(failure.msg, sizeof failure.msg, "libpng: out of memory");
+        return false;
+    }
+    const bool opaque = std::all_of(img.rgba.begin(), img.rgba.end(), [](u32 p) { return (p >> 24) == 0xFF; });
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_write_struct(&png, &info);
+        return false;
+    }
+    png_init_io(png, f);
+    png_set_IHDR(png, info, u32(img.width), u32(img.height), 8, opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
+    png_set_compression_level(png, 1);
+    png_write_info(png, info);
+    // Bytes R, G, B, A in memory (our little-endian u32 layout); for RGB libpng drops the A byte.
+    if (opaque) png_set_filler(png, 0, PNG_FILLER_AFTER);
+    for (int y = 0; y < img.height; ++y)
+        png_write_row(png, reinterpret_cast<png_const_bytep>(img.rgba.data() + size_t(y) * img.width));
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    return true;
+}
+
 }  // namespace
 
 bool writePng(const std::string& path, const Image& img, std::string& err) {
@@ -109,19 +161,16 @@ bool writePng(const std::string& path, const Image& img, std::string& err) {
         }
         return true;
     }
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    png.width = u32(img.width);
-    png.height = u32(img.height);
-    png.format = PNG_FORMAT_RGBA;  // bytes R, G, B, A in memory = our little-endian u32 layout
-    // Speed over size (libpng: no row filters, a lower zlib level): with the default, deflate was
-    // a fifth of a whole `ge2gl render` of a frametest on the software model (Monster Hunter 3rd,
-    // 40 of 180 ms); the pixels are the same (that frame's file even came out smaller, 180 KB
-    // instead of 222 KB; other images may grow).
-    png.flags = PNG_IMAGE_FLAG_FAST;
-    if (!png_image_write_to_file(&png, path.c_str(), 0, img.rgba.data(), 0, nullptr)) {
-        err = "cannot write " + path + ": " + png.message;
-        png_image_free(&png);
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) {
+        err = "cannot write " + path + ": " + std::strerror(errno);
+        return false;
+    }
+    PngFailure failure;
+    const bool written = writePngStream(f, img, failure);
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed) {
+        err = "cannot write " + path + ": " + (written ? "write error (disk full?)" : failure.msg);
         return false;
     }
     return true;
