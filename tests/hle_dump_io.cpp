@@ -336,6 +336,11 @@ TEST(DumpLoad, Errors) {
     badSnappy[1] = 0xFC;  // literal tag claiming 64 bytes follow
     EXPECT_FALSE(load(buildFile(2, "", 3, 20, snappyLiteral(cmd), badSnappy), d, err));
     EXPECT_NE(err.find("snappy"), std::string::npos) << err;
+    // A copy reaching back before the block's start: the right length, every tag well formed, caught
+    // by the decompression itself (there is no separate validation pass).
+    const std::vector<u8> pastStart = {20, 0x0C, 1, 2, 3, 4, u8(0x02 | (15 << 2)), 100, 0};
+    EXPECT_FALSE(load(buildFile(2, "", 3, 20, snappyLiteral(cmd), pastStart), d, err));
+    EXPECT_NE(err.find("corrupt snappy data"), std::string::npos) << err;
     // zstd block of the wrong kind of data.
     EXPECT_FALSE(load(buildFile(6, "", 3, 20, snappyLiteral(cmd), zstdRaw(pushBytes20())), d, err));
     EXPECT_NE(err.find("zstd"), std::string::npos) << err;
