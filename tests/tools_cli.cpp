@@ -12,6 +12,7 @@
 
 #include "hle/dump/player.h"
 #include "tools/lib/image.h"
+#include "tools/lib/png_encode.h"
 #include "tools/lib/render.h"
 #include "tests/tools_cli_run.h"
 
@@ -242,6 +243,40 @@ TEST(ImageIo, PngRoundTripKeepsEveryByteIncludingAlpha) {
     EXPECT_EQ(back.width, 37);
     EXPECT_EQ(back.height, 19);
     EXPECT_EQ(back.rgba, img.rgba);
+}
+
+// The encoder deflates pieces of rows on separate threads (tools/lib/png_encode.cpp): whatever the
+// split, the file is one valid PNG that libpng decodes to the same pixels; opaque images are RGB.
+TEST(ImageIo, PngPiecesDeflatedOnThreadsMakeOneValidImage) {
+    const fs::path t = tmpDir();
+    auto roundTrip = [&](const tools::Image& img, int threads, const char* name) {
+        const std::vector<u8> png = tools::encodePng(img.rgba.data(), img.width, img.height, threads);
+        EXPECT_FALSE(png.empty());
+        {
+            std::ofstream out(t / name, std::ios::binary | std::ios::trunc);
+            out.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        }
+        tools::Image back;
+        std::string err;
+        EXPECT_TRUE(tools::readImage((t / name).string(), back, err)) << name << ": " << err;
+        EXPECT_EQ(back.width, img.width);
+        EXPECT_EQ(back.height, img.height);
+        EXPECT_TRUE(back.rgba == img.rgba) << name;
+        return png.size() > 25 ? int(png[25]) : -1;  // IHDR colour type
+    };
+    // 1920 x 1088 is 6 MiB of scanlines: up to 48 pieces of 128 KiB, so every thread count splits.
+    tools::Image big = testPattern(1920, 1088);
+    tools::Image opaque = big;
+    for (u32& p : opaque.rgba) p |= 0xFF000000u;
+    for (int threads : {1, 2, 3, 8}) {
+        const std::string n = std::to_string(threads);
+        EXPECT_EQ(roundTrip(big, threads, ("alpha" + n + ".png").c_str()), 6) << threads;
+        EXPECT_EQ(roundTrip(opaque, threads, ("opaque" + n + ".png").c_str()), 2) << threads;
+    }
+    // More threads than rows, and one pixel.
+    EXPECT_EQ(roundTrip(testPattern(700, 3), 8, "wide.png"), 6);
+    EXPECT_EQ(roundTrip(testPattern(1, 1), 4, "one.png"), 2);  // its one alpha is 255
+    EXPECT_TRUE(tools::encodePng(nullptr, 0, 5, 2).empty());
 }
 
 TEST(ImageIo, OtherFormatsGoThroughTheOpenImageIoModule) {

@@ -8,14 +8,15 @@
 #include <cctype>
 #include <cerrno>
 #include <cmath>
-#include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iterator>
 #include <limits>
+#include <thread>
 
 #include "hle/pixel_format.h"
+#include "tools/lib/png_encode.h"
 
 namespace ge::tools {
 
@@ -96,54 +97,6 @@ const OiioModule* oiio(std::string& err) {
     return &load.module;
 }
 
-// libpng reports a failure by calling pngError, which keeps its message here and longjmp()s back
-// into writePngStream.
-struct PngFailure {
-    char msg[200] = "libpng failed";
-};
-[[noreturn]] void pngError(png_structp png, png_const_charp msg) {
-    auto* f = static_cast<PngFailure*>(png_get_error_ptr(png));
-    std::snprintf(f->msg, sizeof f->msg, "%s", msg);
-    png_longjmp(png, 1);
-}
-void pngWarning(png_structp, png_const_charp) {}
-
-// The image as a PNG on `f`; false with libpng's message in `failure`. Written for speed, since the PNG is a
-// sizeable part of a short `ge2gl render` (docs/benchmarks.md, "Sixth round": Monster Hunter 3rd's
-// frame 14.5 ms with libpng's simplified writer and PNG_IMAGE_FLAG_FAST, 6.7 ms so, and smaller):
-// - an opaque image (every frame readFrame makes) is stored as RGB: a quarter fewer bytes to
-//   deflate, and the alpha a reader gets back is the same 255;
-// - no row filters and zlib level 1: a game frame's flat areas compress well without them.
-// The pixels a reader decodes are the same as before; only the file's bytes differ.
-// Only locals that libpng's longjmp may skip without harm (pointers, set before setjmp).
-bool writePngStream(std::FILE* f, const Image& img, PngFailure& failure) {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &failure, pngError, pngWarning);
-    png_infop info = png ? png_create_info_struct(png) : nullptr;
-    if (!info) {
-        png_destroy_write_struct(&png, nullptr);
-        std::snprintf(failure.msg, sizeof failure.msg, "libpng: out of memory");
-        return false;
-    }
-    const bool opaque = std::all_of(img.rgba.begin(), img.rgba.end(), [](u32 p) { return (p >> 24) == 0xFF; });
-    if (setjmp(png_jmpbuf(png))) {
-        png_destroy_write_struct(&png, &info);
-        return false;
-    }
-    png_init_io(png, f);
-    png_set_IHDR(png, info, u32(img.width), u32(img.height), 8, opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
-    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
-    png_set_compression_level(png, 1);
-    png_write_info(png, info);
-    // Bytes R, G, B, A in memory (our little-endian u32 layout); for RGB libpng drops the A byte.
-    if (opaque) png_set_filler(png, 0, PNG_FILLER_AFTER);
-    for (int y = 0; y < img.height; ++y)
-        png_write_row(png, reinterpret_cast<png_const_bytep>(img.rgba.data() + size_t(y) * img.width));
-    png_write_end(png, info);
-    png_destroy_write_struct(&png, &info);
-    return true;
-}
-
 }  // namespace
 
 bool writePng(const std::string& path, const Image& img, std::string& err) {
@@ -161,16 +114,22 @@ bool writePng(const std::string& path, const Image& img, std::string& err) {
         }
         return true;
     }
+    // tools/lib/png_encode.cpp says why the PNG is not written through libpng.
+    const int threads = int(std::clamp(std::thread::hardware_concurrency(), 1u, 8u));
+    const std::vector<u8> png = encodePng(img.rgba.data(), img.width, img.height, threads);
+    if (png.empty()) {
+        err = "cannot write " + path + ": out of memory encoding the PNG";
+        return false;
+    }
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (!f) {
         err = "cannot write " + path + ": " + std::strerror(errno);
         return false;
     }
-    PngFailure failure;
-    const bool written = writePngStream(f, img, failure);
+    const bool written = std::fwrite(png.data(), 1, png.size(), f) == png.size();
     const bool closed = std::fclose(f) == 0;
     if (!written || !closed) {
-        err = "cannot write " + path + ": " + (written ? "write error (disk full?)" : failure.msg);
+        err = "cannot write " + path + ": write error (disk full?)";
         return false;
     }
     return true;
