@@ -53,7 +53,8 @@ export build work limitS limitMiB out
 export dumpList=$work/dumps.txt backendsCsv=$backends
 printf '%s\n' "${dumps[@]}" >"$dumpList"
 
-# One render: prints "rc secs kib verdict".
+# One render: prints "rc secs kib verdict". Mutants leave no program binaries in the user's cache
+# (--no-program-cache): their random states would only fill it.
 render() {
   local mutant=$1 backend=$2 tag=$3 args=()
   case $backend in
@@ -62,7 +63,7 @@ render() {
     hw2) args=(--backend gl --gl-mode hw --scale 2) ;;
   esac
   nice -n 10 /usr/bin/time -f "%e %M" -o "$work/$tag.time" timeout -s KILL $((limitS + 5)) \
-    "$build/ge2gl" render "$mutant" "${args[@]}" -o "$work/$tag.png" >/dev/null 2>"$work/$tag.err"
+    "$build/ge2gl" render "$mutant" "${args[@]}" --no-program-cache -o "$work/$tag.png" >/dev/null 2>"$work/$tag.err"
   local rc=$? secs kib lines verdict=ok
   read -r secs kib < <(tail -1 "$work/$tag.time" 2>/dev/null || echo "99 0")
   [[ "$secs" =~ ^[0-9.]+$ ]] || secs=99

@@ -4,8 +4,11 @@
 // renderer compiles nothing), shader dumps, stats, and EGL context creation.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "shadergen/keys_from_state.h"
@@ -230,6 +233,37 @@ TEST(GlProgramCache, SecondRendererCompilesNothing) {
             for (int i = 0; i < 4; ++i) EXPECT_EQ(px[i], firstPixels[i]) << i;
         }
     }
+}
+
+// The directory is bounded (ProgramCache::trimDisk): past kMaxDiskPrograms binaries, the first
+// write of a cache removes the oldest until half remain, and leaves other files alone.
+TEST(GlProgramCache, DiskDirectoryIsTrimmedToHalfItsBoundOldestFirst) {
+    const fs::path dir = freshDir("progtrim");
+    const size_t bound = gl::ProgramCache::kMaxDiskPrograms, extra = 10;
+    const auto now = fs::file_time_type::clock::now();
+    for (size_t i = 0; i < bound + extra; ++i) {
+        char name[32];
+        std::snprintf(name, sizeof name, "%016zx.bin", i);
+        std::ofstream(dir / name) << "old";
+        // File i is i seconds younger than file 0: the lowest numbers are the oldest.
+        fs::last_write_time(dir / name, now - std::chrono::hours(1) + std::chrono::seconds(i));
+    }
+    std::ofstream(dir / "notes.txt") << "not the cache's";
+    gl::GlOptions opt;
+    opt.programCacheDir = dir.string();
+    std::string err;
+    GlCacheScene s;
+    if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
+    const gl::GlStats st = s.renderer->stats();
+    ASSERT_GT(st.shaderCompiles, 0u);  // so something was written
+    size_t bins = 0;
+    for (const auto& e : fs::directory_iterator(dir)) bins += e.path().extension() == ".bin";
+    EXPECT_EQ(bins, bound / 2 + st.shaderCompiles);
+    EXPECT_FALSE(fs::exists(dir / "0000000000000000.bin"));  // the oldest went
+    char newest[32];
+    std::snprintf(newest, sizeof newest, "%016zx.bin", bound + extra - 1);
+    EXPECT_TRUE(fs::exists(dir / newest));
+    EXPECT_TRUE(fs::exists(dir / "notes.txt"));
 }
 
 TEST(GlProgramCache, ShaderDumpWritesSources) {

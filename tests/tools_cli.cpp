@@ -7,6 +7,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -131,6 +133,47 @@ TEST(Cli, HardwareModeRendersAtScaleAndBenchesWithNullGl) {
     EXPECT_EQ(e.code, 1);
     EXPECT_NE(e.out.find("--gl-mode hw"), std::string::npos) << e.out;
     fs::remove_all(t);
+}
+
+// GL program binaries: by default under $XDG_CACHE_HOME/ge2gl/programs, so that a second render
+// compiles nothing; --no-program-cache keeps none; --program-cache DIR chooses the place; bench
+// uses none unless asked. Skipped where no GL context can be made.
+TEST(Cli, ProgramBinariesAreCachedUnderXdgCacheHomeByDefault) {
+    const fs::path t = tmpDir() / "xdg";
+    fs::remove_all(t);
+    auto render = [&](const std::string& extra) {
+        return clitest::runCommand("XDG_CACHE_HOME=" + clitest::quote(t.string()) + " " + clitest::cliPath() +
+                                   " render " + scene("render_to_texture") + " --backend gl --stats -o " +
+                                   clitest::quote((t.parent_path() / "p.png").string()) + extra);
+    };
+    auto counter = [](const std::string& out, const char* name) {
+        const size_t at = out.find(name);
+        return at == std::string::npos ? -1L : std::strtol(out.c_str() + at + std::strlen(name), nullptr, 10);
+    };
+    const CliRun first = render("");
+    if (first.code != 0 && first.out.find("OSMesa") != std::string::npos) GTEST_SKIP() << first.out;
+    ASSERT_EQ(first.code, 0) << first.out;
+    const fs::path dir = t / "ge2gl" / "programs";
+    ASSERT_TRUE(fs::is_directory(dir)) << first.out;
+    const auto bins = std::distance(fs::directory_iterator(dir), fs::directory_iterator());
+    EXPECT_GT(counter(first.out, "shaderCompiles"), 0) << first.out;
+    EXPECT_EQ(counter(first.out, "diskCacheHits"), 0) << first.out;
+    EXPECT_EQ(bins, counter(first.out, "shaderCompiles")) << first.out;
+    const CliRun second = render("");
+    ASSERT_EQ(second.code, 0) << second.out;
+    EXPECT_EQ(counter(second.out, "shaderCompiles"), 0) << second.out;
+    EXPECT_EQ(counter(second.out, "diskCacheHits"), counter(first.out, "shaderCompiles")) << second.out;
+    const CliRun none = render(" --no-program-cache");
+    ASSERT_EQ(none.code, 0) << none.out;
+    EXPECT_EQ(counter(none.out, "diskCacheHits"), 0) << none.out;
+    EXPECT_GT(counter(none.out, "shaderCompiles"), 0) << none.out;
+    const CliRun elsewhere = render(" --program-cache " + clitest::quote((t / "mine").string()));
+    ASSERT_EQ(elsewhere.code, 0) << elsewhere.out;
+    EXPECT_GT(counter(elsewhere.out, "shaderCompiles"), 0) << elsewhere.out;
+    EXPECT_TRUE(fs::is_directory(t / "mine"));
+    // Both at once is a usage error.
+    EXPECT_EQ(render(" --no-program-cache --program-cache " + clitest::quote(t.string())).code, 2);
+    fs::remove_all(t.parent_path());
 }
 
 TEST(Cli, ReplayEndStopsEarly) {

@@ -280,7 +280,7 @@ struct Cli {
     int repeat = 3;
     tools::StepOptions stepOpt;
     std::string stepFile;
-    bool nullGl = false, warm = false;
+    bool nullGl = false, warm = false, noProgramCache = false;
     std::string blameFile;
     tools::BlameOptions blameOpt;
     std::string bisectFile;
@@ -353,7 +353,12 @@ struct Cli {
                        "(default: cpu on a software rasteriser such as llvmpipe, else gpu)")
             ->check(CLI::IsMember({"auto", "gpu", "cpu"}));
         sc->add_option("--dump-shaders", ropt.shaderDumpDir, "GL: write generated shaders to DIR");
-        sc->add_option("--program-cache", ropt.programCacheDir, "GL: on-disk program binary cache DIR");
+        CLI::Option* cacheDir = sc->add_option(
+            "--program-cache", ropt.programCacheDir,
+            "GL: on-disk program binary cache DIR (render, compare, step, report, blame, bisect default to "
+            "$XDG_CACHE_HOME/ge2gl/programs, else ~/.cache/ge2gl/programs; bench and fuzz to none)");
+        sc->add_flag("--no-program-cache", noProgramCache, "GL: compile every program, keep no binaries on disk")
+            ->excludes(cacheDir);
     }
     // --skip / --only (render, compare, bench): tools/lib/draw_select.h.
     void addDrawSelectOpts(CLI::App* sc) {
@@ -528,6 +533,11 @@ int Cli::parse(int argc, char** argv) {
     }
     dump::parseReplayTiming(replayTiming, ropt.replayTiming);
     if (nullGl) ropt.glContext = "null";
+    // Program binaries on disk by default, as Mesa keeps its own shader cache: a second GL render
+    // of the same kind of frame compiles nothing (docs/benchmarks.md, "Sixth round"). Not for bench,
+    // which measures ge2gl's own work, nor for fuzz, whose random states would fill the directory.
+    if (ropt.programCacheDir.empty() && !noProgramCache && !*bench && !*fuzz)
+        ropt.programCacheDir = tools::defaultProgramCacheDir();
     if (ropt.scale > 1 && (ropt.backend != "gl" || ropt.glMode != "hw"))
         return fail("--scale above 1 needs --backend gl --gl-mode hw");
     std::string optErr;  // usage errors: exit 2, as CLI11's

@@ -2,6 +2,10 @@
 // Program cache (see shader_cache.h).
 #include "translator/shader_cache.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -183,8 +187,12 @@ void ProgramCache::saveBinary(const std::string& path, GLuint prog) {
     GLsizei got = 0;
     gl.GetProgramBinary(prog, length, &got, &format, data.data());
     if (got <= 0) return;
-    // Write to a temporary name first so a concurrent reader never sees a half file.
-    const std::string tmp = path + ".tmp";
+    // Write to a temporary name first so a concurrent reader never sees a half file; the name is
+    // this process's and this cache's own, so concurrent writers (renders run in parallel) never
+    // share one.
+    trimDisk();
+    const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." +
+                            std::to_string(reinterpret_cast<uintptr_t>(this)) + "." + std::to_string(++tmpSerial_);
     {
         std::ofstream out(tmp, std::ios::binary);
         if (!out) return;
@@ -197,6 +205,29 @@ void ProgramCache::saveBinary(const std::string& path, GLuint prog) {
     }
     std::error_code ec;
     std::filesystem::rename(tmp, path, ec);
+}
+
+// The directory is bounded: before this cache's first write, when it holds more than
+// kMaxDiskPrograms binaries, the oldest (by modification time) go until half remain. A program
+// binary is 10-20 KiB, so the directory stays under about 40 MiB; a removed binary is compiled and
+// stored again when next needed. Files that are not the cache's are left alone. Another process
+// may remove the same file first: every failure here is ignored.
+void ProgramCache::trimDisk() {
+    if (trimmed_) return;
+    trimmed_ = true;
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    std::vector<std::pair<fs::file_time_type, fs::path>> bins;
+    for (fs::directory_iterator it(diskDir_, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path& f = it->path();
+        if (f.extension() != ".bin" || f.stem().string().size() != 16) continue;
+        std::error_code tec;
+        const fs::file_time_type t = fs::last_write_time(f, tec);
+        if (!tec) bins.emplace_back(t, f);
+    }
+    if (bins.size() <= kMaxDiskPrograms) return;
+    std::sort(bins.begin(), bins.end());
+    for (size_t i = 0; i < bins.size() - kMaxDiskPrograms / 2; ++i) fs::remove(bins[i].second, ec);
 }
 
 void ProgramCache::lookupUniforms(Program& p) {

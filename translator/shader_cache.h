@@ -31,6 +31,8 @@ struct ProgramCacheStats {
 
 class ProgramCache {
 public:
+    // The on-disk directory's bound (trimDisk).
+    static constexpr size_t kMaxDiskPrograms = 2048;
     ProgramCache(const GlContext& ctx, const shadergen::HostCaps& caps, std::string dumpDir, std::string diskDir);
     ~ProgramCache();
     // nullptr + err when generation or compilation fails.
@@ -57,11 +59,14 @@ private:
                std::string* err);
     bool loadBinary(const std::string& path, GLuint prog);
     void saveBinary(const std::string& path, GLuint prog);
+    void trimDisk();
     void lookupUniforms(Program& p);
 
     const GlContext& ctx_;
     shadergen::HostCaps caps_;
     std::string dumpDir_, diskDir_;
+    bool trimmed_ = false;  // trimDisk has looked at diskDir_
+    u64 tmpSerial_ = 0;
     std::unordered_map<Key, Program, KeyHash, KeyEq> programs_;
     ProgramCacheStats stats_;
 };

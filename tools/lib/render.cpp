@@ -3,6 +3,7 @@
 
 #include <cctype>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <optional>
@@ -141,6 +142,14 @@ bool renderDump(const dump::Dump& d, const RenderOptions& opt, RenderOutput& out
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return true;
+}
+
+std::string defaultProgramCacheDir() {
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    if (xdg && xdg[0] == '/') return std::string(xdg) + "/ge2gl/programs";  // the spec ignores relative paths
+    const char* home = std::getenv("HOME");
+    if (home && home[0]) return std::string(home) + "/.cache/ge2gl/programs";
+    return {};
 }
 
 bool renderDumpFile(const std::string& path, const RenderOptions& opt, RenderOutput& out, std::string& err,

@@ -44,6 +44,10 @@ struct RenderOutput {
     double seconds = 0;            // load + replay + readback
 };
 
+// Where the CLI keeps GL program binaries unless told otherwise: $XDG_CACHE_HOME/ge2gl/programs,
+// else $HOME/.cache/ge2gl/programs (XDG Base Directory), else "" (none).
+std::string defaultProgramCacheDir();
+
 // Backends by name (backend/factory.h); a backend not compiled in gives a clear error.
 backend::Backend createBackend(const RenderOptions& opt, Memory& mem, std::string& err);
 // The backend's own counters (those that offer them: GL), else empty.
