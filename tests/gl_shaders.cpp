@@ -212,15 +212,20 @@ public:
     }
 };
 
+// The scene rendered with program binaries under `dir`; false (err says why) without a GL context.
+bool renderWithProgramCache(GlCacheScene& s, const fs::path& dir, std::string& err) {
+    gl::GlOptions opt;
+    opt.programCacheDir = dir.string();
+    return s.render(opt, err);
+}
+
 TEST(GlProgramCache, SecondRendererCompilesNothing) {
     const fs::path dir = freshDir("progcache");
     u32 firstPixels[4] = {};
     for (int pass = 0; pass < 2; ++pass) {
-        gl::GlOptions opt;
-        opt.programCacheDir = dir.string();
         std::string err;
         GlCacheScene s;
-        if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
+        if (!renderWithProgramCache(s, dir, err)) GTEST_SKIP() << "no GL context: " << err;
         const gl::GlStats st = s.renderer->stats();
         const u32 px[4] = {s.px32(4, 4), s.px32(20, 20), s.px32(40, 40), s.px32(60, 60)};
         if (pass == 0) {
@@ -249,11 +254,9 @@ TEST(GlProgramCache, DiskDirectoryIsTrimmedToHalfItsBoundOldestFirst) {
         fs::last_write_time(dir / name, now - std::chrono::hours(1) + std::chrono::seconds(i));
     }
     std::ofstream(dir / "notes.txt") << "not the cache's";
-    gl::GlOptions opt;
-    opt.programCacheDir = dir.string();
     std::string err;
     GlCacheScene s;
-    if (!s.render(opt, err)) GTEST_SKIP() << "no GL context: " << err;
+    if (!renderWithProgramCache(s, dir, err)) GTEST_SKIP() << "no GL context: " << err;
     const gl::GlStats st = s.renderer->stats();
     ASSERT_GT(st.shaderCompiles, 0u);  // so something was written
     size_t bins = 0;
