@@ -241,7 +241,8 @@ TEST(GlProgramCache, SecondRendererCompilesNothing) {
 }
 
 // The directory is bounded (ProgramCache::trimDisk): past kMaxDiskPrograms binaries, the first
-// write of a cache removes the oldest until half remain, and leaves other files alone.
+// write of a cache removes the oldest until half remain, and stale temporary files; it leaves
+// other files alone.
 TEST(GlProgramCache, DiskDirectoryIsTrimmedToHalfItsBoundOldestFirst) {
     const fs::path dir = freshDir("progtrim");
     const size_t bound = gl::ProgramCache::kMaxDiskPrograms, extra = 10;
@@ -254,6 +255,10 @@ TEST(GlProgramCache, DiskDirectoryIsTrimmedToHalfItsBoundOldestFirst) {
         fs::last_write_time(dir / name, now - std::chrono::hours(1) + std::chrono::seconds(i));
     }
     std::ofstream(dir / "notes.txt") << "not the cache's";
+    // Temporary files of writers that died: an old one goes, a fresh one (a writer at work) stays.
+    std::ofstream(dir / "00000000000000aa.bin.tmp.1.2.3") << "half";
+    fs::last_write_time(dir / "00000000000000aa.bin.tmp.1.2.3", now - std::chrono::hours(2));
+    std::ofstream(dir / "00000000000000bb.bin.tmp.4.5.6") << "half";
     std::string err;
     GlCacheScene s;
     if (!renderWithProgramCache(s, dir, err)) GTEST_SKIP() << "no GL context: " << err;
@@ -267,6 +272,8 @@ TEST(GlProgramCache, DiskDirectoryIsTrimmedToHalfItsBoundOldestFirst) {
     std::snprintf(newest, sizeof newest, "%016zx.bin", bound + extra - 1);
     EXPECT_TRUE(fs::exists(dir / newest));
     EXPECT_TRUE(fs::exists(dir / "notes.txt"));
+    EXPECT_FALSE(fs::exists(dir / "00000000000000aa.bin.tmp.1.2.3"));
+    EXPECT_TRUE(fs::exists(dir / "00000000000000bb.bin.tmp.4.5.6"));
 }
 
 TEST(GlProgramCache, ShaderDumpWritesSources) {

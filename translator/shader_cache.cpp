@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -211,19 +212,26 @@ void ProgramCache::saveBinary(const std::string& path, GLuint prog) {
 // kMaxDiskPrograms binaries, the oldest (by modification time) go until half remain. A program
 // binary is 10-20 KiB, so the directory stays under about 40 MiB; a removed binary is compiled and
 // stored again when next needed. Files that are not the cache's are left alone. Another process
-// may remove the same file first: every failure here is ignored.
+// may remove the same file first: every failure here is ignored. A temporary file left by a
+// process that died while writing it (saveBinary) goes once it is an hour old.
 void ProgramCache::trimDisk() {
     if (trimmed_) return;
     trimmed_ = true;
     namespace fs = std::filesystem;
     std::error_code ec;
+    const fs::file_time_type staleBefore = fs::file_time_type::clock::now() - std::chrono::hours(1);
     std::vector<std::pair<fs::file_time_type, fs::path>> bins;
     for (fs::directory_iterator it(diskDir_, ec), end; !ec && it != end; it.increment(ec)) {
         const fs::path& f = it->path();
-        if (f.extension() != ".bin" || f.stem().string().size() != 16) continue;
+        const std::string name = f.filename().string();
         std::error_code tec;
         const fs::file_time_type t = fs::last_write_time(f, tec);
-        if (!tec) bins.emplace_back(t, f);
+        if (tec) continue;
+        if (name.size() > 21 && name.compare(16, 9, ".bin.tmp.") == 0) {
+            if (t < staleBefore) fs::remove(f, tec);
+            continue;
+        }
+        if (f.extension() == ".bin" && f.stem().string().size() == 16) bins.emplace_back(t, f);
     }
     if (bins.size() <= kMaxDiskPrograms) return;
     std::sort(bins.begin(), bins.end());
