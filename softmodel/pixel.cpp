@@ -40,7 +40,16 @@ inline void writeStencilOnly(const Impl& im, u8* p, u32 old, int stencil) {
 template <GeBufferFormat F, bool TEX, bool BLEND, bool ZTEST, bool FULL>
 void shadeNormal(const PixelState& ps, const Impl& im, const geo::Fragment* frags, size_t n) {
     using FB = Fb<F>;
+    // Texture colours are sampled for a run of fragments first (Sampler::sampleFragments forms four
+    // pixels' texel coordinates at once), then each fragment goes through the stages below.
+    // Sampling reads only the fragment and the decoded texture, so it may run ahead, for the
+    // fragments the checks below drop too.
+    constexpr size_t kRun = 64;
+    u32 texel[TEX ? kRun : 1];
     for (size_t i = 0; i < n; ++i) {
+        if constexpr (TEX) {
+            if (i % kRun == 0) im.sampler.sampleFragments(frags + i, std::min(kRun, n - i), texel);
+        }
         const geo::Fragment& f = frags[i];
         if (f.x < 0 || f.y < 0) continue;
         const u64 off = u64(f.y) * ps.fbStride + u64(f.x);
@@ -54,7 +63,7 @@ void shadeNormal(const PixelState& ps, const Impl& im, const geo::Fragment* frag
 
         // 1. Texture function (with doubling) + secondary colour, clamped.
         Rgba c{f.color[0], f.color[1], f.color[2], f.color[3]};
-        if constexpr (TEX) im.texFunc(c, im.sampler.sample(f.s, f.t, f.lod, f.w), im.texEnv);
+        if constexpr (TEX) im.texFunc(c, texel[i % kRun], im.texEnv);
         addSecondaryAndClamp(c, f.secondary);
 
         if constexpr (FULL) {

@@ -192,6 +192,75 @@ u32 sampleFixedT(const Sampler& sm, float s, float t, float, float) {
     return filterT<LINEAR, CU, CV>(sm.levels[sm.fixed.level], s, t);
 }
 
+#if defined(__SSE2__)
+// Four fragments through filterT<LINEAR, CU, CV> on one level: the coordinate products, their
+// conversion to 8-fraction-bit fixed point and the wrap/clamp addressing are done for the four
+// pixels at once; the texel loads and the bilinear weighting stay per pixel. Each lane repeats
+// the scalar routine's operations: the same float products; cvttps2dq truncates as texelFixed
+// does and cvtps2dq rounds to nearest-even as texelFixedRound does (MXCSR's default mode, which
+// the scalar roundHalfEven also assumes), both giving INT32_MIN out of range and for NaN. The
+// scalar code then works in 64 bits; lanes within 128 of INT32_MIN would wrap in 32, so a group
+// holding one goes through the scalar routine instead.
+template <bool CLAMP>
+inline __m128i addressTexels(__m128i u, int mask, int maxIndex) {
+    if constexpr (CLAMP) {
+        const __m128i zero = _mm_setzero_si128(), hi = _mm_set1_epi32(maxIndex);
+        u = _mm_andnot_si128(_mm_cmplt_epi32(u, zero), u);  // u < 0 → 0
+        const __m128i over = _mm_cmpgt_epi32(u, hi);
+        return _mm_or_si128(_mm_and_si128(over, hi), _mm_andnot_si128(over, u));
+    } else {
+        return _mm_and_si128(u, _mm_set1_epi32(mask));
+    }
+}
+
+template <bool LINEAR, bool CU, bool CV>
+void sampleFixed4T(const Sampler& sm, const geo::Fragment* f, u32* out) {
+    const TexLevel& lv = sm.levels[sm.fixed.level];
+    if (!lv.texels) {
+        out[0] = out[1] = out[2] = out[3] = 0;
+        return;
+    }
+    const __m128 s = _mm_setr_ps(f[0].s, f[1].s, f[2].s, f[3].s);
+    const __m128 t = _mm_setr_ps(f[0].t, f[1].t, f[2].t, f[3].t);
+    const __m128 su = _mm_mul_ps(s, _mm_set1_ps(lv.scaleU)), tv = _mm_mul_ps(t, _mm_set1_ps(lv.scaleV));
+    alignas(16) s32 ua[4], va[4];
+    if constexpr (!LINEAR) {
+        // u = trunc(s·w·256) >> 8 (texelFixed; INT32_MIN >> 8 needs no 64 bits).
+        _mm_store_si128(reinterpret_cast<__m128i*>(ua),
+                        addressTexels<CU>(_mm_srai_epi32(_mm_cvttps_epi32(su), 8), lv.wrapMaskU, lv.clampMaxU));
+        _mm_store_si128(reinterpret_cast<__m128i*>(va),
+                        addressTexels<CV>(_mm_srai_epi32(_mm_cvttps_epi32(tv), 8), lv.wrapMaskV, lv.clampMaxV));
+        for (int k = 0; k < 4; ++k) out[k] = lv.texels[size_t(va[k]) * size_t(lv.storedW) + size_t(ua[k])];
+        return;
+    } else {
+        const __m128i pu = lv.linearTruncates ? _mm_cvttps_epi32(su) : _mm_cvtps_epi32(su);
+        const __m128i pv = lv.linearTruncates ? _mm_cvttps_epi32(tv) : _mm_cvtps_epi32(tv);
+        const __m128i low = _mm_set1_epi32(INT32_MIN + 128);
+        if (_mm_movemask_epi8(_mm_or_si128(_mm_cmplt_epi32(pu, low), _mm_cmplt_epi32(pv, low)))) {
+            for (int k = 0; k < 4; ++k) out[k] = filterT<true, CU, CV>(lv, f[k].s, f[k].t);
+            return;
+        }
+        const __m128i bu = _mm_sub_epi32(pu, _mm_set1_epi32(128)), bv = _mm_sub_epi32(pv, _mm_set1_epi32(128));
+        const __m128i fifteen = _mm_set1_epi32(15), one = _mm_set1_epi32(1);
+        alignas(16) s32 fu[4], fv[4], ub[4], vb[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(fu), _mm_and_si128(_mm_srai_epi32(bu, 4), fifteen));
+        _mm_store_si128(reinterpret_cast<__m128i*>(fv), _mm_and_si128(_mm_srai_epi32(bv, 4), fifteen));
+        const __m128i u0 = _mm_srai_epi32(bu, 8), v0 = _mm_srai_epi32(bv, 8);
+        _mm_store_si128(reinterpret_cast<__m128i*>(ua), addressTexels<CU>(u0, lv.wrapMaskU, lv.clampMaxU));
+        _mm_store_si128(reinterpret_cast<__m128i*>(ub),
+                        addressTexels<CU>(_mm_add_epi32(u0, one), lv.wrapMaskU, lv.clampMaxU));
+        _mm_store_si128(reinterpret_cast<__m128i*>(va), addressTexels<CV>(v0, lv.wrapMaskV, lv.clampMaxV));
+        _mm_store_si128(reinterpret_cast<__m128i*>(vb),
+                        addressTexels<CV>(_mm_add_epi32(v0, one), lv.wrapMaskV, lv.clampMaxV));
+        for (int k = 0; k < 4; ++k) {
+            const u32* rowA = lv.texels + size_t(va[k]) * size_t(lv.storedW);
+            const u32* rowB = lv.texels + size_t(vb[k]) * size_t(lv.storedW);
+            out[k] = weighQuad(rowA[ua[k]], rowA[ub[k]], rowB[ua[k]], rowB[ub[k]], fu[k], fv[k]);
+        }
+    }
+}
+#endif
+
 u32 sampleWithChoice(const Sampler& sm, const LevelChoice& c, float s, float t) {
     const int last = std::max(sm.levelCount - 1, 0);
     const int l = std::min(c.level, last);
@@ -224,7 +293,15 @@ u32 mixLevels(u32 c, u32 cNext, int frac) {
     return compact((spread(cNext) * u64(frac) + spread(c) * u64(16 - frac)) >> 4);
 }
 
+void Sampler::sampleFragments(const geo::Fragment* f, size_t n, u32* out) const {
+    size_t i = 0;
+    if (fn4)
+        for (; i + 4 <= n; i += 4) fn4(*this, f + i, out + i);
+    for (; i < n; ++i) out[i] = fn(*this, f[i].s, f[i].t, f[i].lod, f[i].w);
+}
+
 void Sampler::finalize() {
+    fn4 = nullptr;
     if (fixedChoice && fixed.frac == 0 && fixed.level < std::max(levelCount, 1)) {
         const int k = (fixed.linear ? 4 : 0) | (clampU ? 2 : 0) | (clampV ? 1 : 0);
         static constexpr SampleFn table[8] = {
@@ -234,6 +311,15 @@ void Sampler::finalize() {
             &sampleFixedT<true, true, false>,   &sampleFixedT<true, true, true>,
         };
         fn = table[k];
+#if defined(__SSE2__)
+        static constexpr Sample4Fn table4[8] = {
+            &sampleFixed4T<false, false, false>, &sampleFixed4T<false, false, true>,
+            &sampleFixed4T<false, true, false>,  &sampleFixed4T<false, true, true>,
+            &sampleFixed4T<true, false, false>,  &sampleFixed4T<true, false, true>,
+            &sampleFixed4T<true, true, false>,   &sampleFixed4T<true, true, true>,
+        };
+        fn4 = table4[k];
+#endif
     } else if (fixedChoice) {
         fn = &sampleFixedGeneral;
     } else {

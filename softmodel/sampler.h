@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "geometry/fragment.h"
 #include "hle/ge_state.h"
 #include "hle/types.h"
 
@@ -85,6 +86,13 @@ struct Sampler {
     SampleFn fn = nullptr;
 
     u32 sample(float s, float t, float lodValue, float w) const { return fn(*this, s, t, lodValue, w); }
+
+    // The texture colours of n fragments (out[i] = sample(f[i].s, f[i].t, f[i].lod, f[i].w), the
+    // same values). Where one level and one filter serve every pixel (the routines of
+    // sampleFixedT), four fragments' texel coordinates are formed together (SSE2).
+    void sampleFragments(const geo::Fragment* f, size_t n, u32* out) const;
+    using Sample4Fn = void (*)(const Sampler&, const geo::Fragment* f, u32* out);
+    Sample4Fn fn4 = nullptr;
 
     // Picks the specialised routine; call after levels, lod, clamp flags and the fixed choice
     // are set.

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
+#include <random>
 
 #include "authoring/list_builder.h"
 #include "geometry/texture_size.h"
@@ -65,6 +67,55 @@ TEST(SoftSampler, BilinearWeightsWithHalfTexelShift) {
     EXPECT_EQ(sampleBilinear(lv, 0.3f, 0.6f, false, false), rgba(13, 116, 148, 106));
     // (0.9, 0.1): u0 1 (u1 wraps to 0), fu 4; 51 − 128 = −77 → v0 −1 (wraps to 1), fv 11.
     EXPECT_EQ(sampleBilinear(lv, 0.9f, 0.1f, false, false), rgba(149, 40, 87, 152));
+}
+
+// Sampler::sampleFragments forms four pixels' texel coordinates at once (SSE2) where one level and
+// one filter serve the draw; every result must be the per-pixel routine's, for every filter,
+// wrap/clamp and rounding mode, at ties, far out of range, at the edge of the 32-bit range (where
+// the four-pixel path hands the group to the scalar one) and for NaN and infinities.
+TEST(SoftSampler, FourPixelPathMatchesThePerPixelOne) {
+    std::vector<u32> texels(512 * 64);
+    u32 x = 12345;
+    for (u32& t : texels) t = x = x * 1664525u + 1013904223u;
+    std::vector<geo::Fragment> frags;
+    auto add = [&](float s, float t) {
+        geo::Fragment f;
+        f.s = s, f.t = t;
+        frags.push_back(f);
+    };
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> wide(-4.0f, 4.0f);
+    for (int i = 0; i < 2000; ++i) add(wide(rng), wide(rng));
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    for (float e : {nan, inf, -inf, 1e10f, -1e10f, 0.0f, -0.0f}) add(e, 0.25f), add(0.25f, e);
+    for (u32 wlog : {6u, 10u}) {  // 64 wide, and 1024 (addressing saturates at 511)
+        const float scale = float(1u << wlog) * 256.0f;
+        std::uniform_int_distribution<int> m(-100000, 100000);
+        for (int i = 0; i < 500; ++i) add((float(m(rng)) + 0.5f) / scale, (float(m(rng)) + 0.5f) / 8192.0f);  // ties
+        for (int d = 0; d < 260; d += 7)  // around INT32_MIN once scaled
+            add((-2147483648.0f + float(d * 128)) / scale, 0.5f), add(0.5f, (-2147483648.0f + float(d * 128)) / 8192.0f);
+    }
+    frags.push_back(frags[5]);  // a count that is not a multiple of four
+    for (u32 wlog : {6u, 10u})
+        for (int k = 0; k < 16; ++k) {
+            Sampler sm;
+            sm.levels[0] = levelOf(texels, wlog, 5);
+            sm.levels[0].linearTruncates = (k & 8) != 0;
+            sm.levelCount = 1;
+            sm.fixedChoice = true;
+            sm.fixed.linear = (k & 4) != 0;
+            sm.clampU = (k & 2) != 0;
+            sm.clampV = (k & 1) != 0;
+            sm.finalize();
+#if defined(__SSE2__)
+            ASSERT_NE(sm.fn4, nullptr);
+#endif
+            std::vector<u32> got(frags.size());
+            sm.sampleFragments(frags.data(), frags.size(), got.data());
+            for (size_t i = 0; i < frags.size(); ++i)
+                ASSERT_EQ(got[i], sm.sample(frags[i].s, frags[i].t, 0, 1))
+                    << "wlog " << wlog << " variant " << k << " s " << frags[i].s << " t " << frags[i].t;
+        }
 }
 
 TEST(SoftSampler, RepeatVersusClamp) {
