@@ -2,17 +2,19 @@
 // .ppdmp reader/writer; see ppdmp.h and docs/ppdmp.md §1–§3, §5, §7.
 #include "hle/dump/ppdmp.h"
 
+#include <minizip/unzip.h>
 #include <snappy.h>
-#include <zip.h>
 #include <zstd.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <new>
+#include <type_traits>
 
 namespace ge::dump {
 
@@ -218,12 +220,61 @@ bool isZipSignature(const u8* data, size_t size) {
            ((data[2] == 3 && data[3] == 4) || (data[2] == 5 && data[3] == 6));
 }
 
-struct ZipDiscard {
-    void operator()(zip_t* z) const { zip_discard(z); }
+// Zip archives are read with minizip (zlib's contrib/minizip), which needs only zlib. libzip,
+// used before, links OpenSSL's libcrypto for encrypted entries: about 1.3 ms of loading and
+// relocating in every process that maps libge2gl (docs/benchmarks.md, "Sixth round").
+//
+// minizip reads through these callbacks from the archive already in memory.
+struct ZipMemory {
+    const u8* data = nullptr;
+    u64 size = 0, pos = 0;
 };
-struct ZipFileClose {
-    void operator()(zip_file_t* f) const { zip_fclose(f); }
+
+voidpf ZCALLBACK zipMemOpen(voidpf opaque, const void*, int mode) {
+    if (mode & ZLIB_FILEFUNC_MODE_WRITE) return nullptr;
+    static_cast<ZipMemory*>(opaque)->pos = 0;
+    return opaque;
+}
+uLong ZCALLBACK zipMemRead(voidpf, voidpf stream, void* buf, uLong size) {
+    auto* m = static_cast<ZipMemory*>(stream);
+    const u64 n = std::min<u64>(size, m->size - m->pos);
+    if (n) std::memcpy(buf, m->data + m->pos, size_t(n));
+    m->pos += n;
+    return uLong(n);
+}
+uLong ZCALLBACK zipMemWrite(voidpf, voidpf, const void*, uLong) { return 0; }
+ZPOS64_T ZCALLBACK zipMemTell(voidpf, voidpf stream) { return static_cast<ZipMemory*>(stream)->pos; }
+long ZCALLBACK zipMemSeek(voidpf, voidpf stream, ZPOS64_T offset, int origin) {
+    auto* m = static_cast<ZipMemory*>(stream);
+    u64 base = 0;
+    if (origin == ZLIB_FILEFUNC_SEEK_CUR) base = m->pos;
+    else if (origin == ZLIB_FILEFUNC_SEEK_END) base = m->size;
+    else if (origin != ZLIB_FILEFUNC_SEEK_SET) return -1;
+    if (offset > m->size - base) return -1;  // past the end (no wrap: base <= size)
+    m->pos = base + offset;
+    return 0;
+}
+int ZCALLBACK zipMemClose(voidpf, voidpf) { return 0; }
+int ZCALLBACK zipMemError(voidpf, voidpf) { return 0; }
+
+struct UnzClose {
+    void operator()(unzFile f) const { unzClose(f); }
 };
+using UnzHandle = std::unique_ptr<std::remove_pointer_t<unzFile>, UnzClose>;
+
+std::string unzMessage(int code) {
+    switch (code) {
+    case UNZ_ERRNO: return "read error";
+    case UNZ_EOF: return "unexpected end of data";
+    case UNZ_PARAMERROR: return "bad parameter";
+    case UNZ_BADZIPFILE: return "damaged archive";
+    case UNZ_INTERNALERROR: return "internal error";
+    case UNZ_CRCERROR: return "CRC mismatch";
+    case Z_DATA_ERROR: return "damaged compressed data";
+    case Z_MEM_ERROR: return "out of memory";
+    default: return "error " + std::to_string(code);
+    }
+}
 
 std::string lowerAscii(std::string s) {
     for (char& c : s)
@@ -370,85 +421,117 @@ bool extractPpdmpFromZip(const u8* data, size_t size, std::vector<u8>& out, std:
         err = "zip archive too large";
         return false;
     }
-    zip_error_t ze;
-    zip_error_init(&ze);
-    zip_source_t* src = zip_source_buffer_create(data, size, 0, &ze);
-    if (!src) {
-        err = std::string("zip: ") + zip_error_strerror(&ze);
-        zip_error_fini(&ze);
+    // The archive must end with its end-of-central-directory record and that record's comment
+    // (APPNOTE.TXT 4.3.16): a cut archive is refused here, where minizip would accept a record
+    // whose comment length runs past the end.
+    bool ends = false;
+    for (size_t i = size - 22;; --i) {
+        if (data[i] == 'P' && data[i + 1] == 'K' && data[i + 2] == 5 && data[i + 3] == 6 &&
+            i + 22 + (size_t(data[i + 20]) | size_t(data[i + 21]) << 8) == size) {
+            ends = true;
+            break;
+        }
+        if (i == 0 || size - 22 - i >= 0xFFFF) break;
+    }
+    if (!ends) {
+        err = "zip: no end-of-central-directory record at the end (a cut or damaged archive)";
         return false;
     }
-    std::unique_ptr<zip_t, ZipDiscard> za(zip_open_from_source(src, ZIP_RDONLY | ZIP_CHECKCONS, &ze));
-    if (!za) {
-        zip_source_free(src);  // not taken over on failure
-        err = std::string("zip: ") + zip_error_strerror(&ze);
-        zip_error_fini(&ze);
+    ZipMemory mem{data, u64(size), 0};
+    zlib_filefunc64_def io{};
+    io.zopen64_file = zipMemOpen;
+    io.zread_file = zipMemRead;
+    io.zwrite_file = zipMemWrite;
+    io.ztell64_file = zipMemTell;
+    io.zseek64_file = zipMemSeek;
+    io.zclose_file = zipMemClose;
+    io.zerror_file = zipMemError;
+    io.opaque = &mem;
+    UnzHandle uz(unzOpen2_64("memory", &io));
+    if (!uz) {
+        err = "zip: not a zip archive or a damaged one";
         return false;
     }
-    zip_error_fini(&ze);
 
     // ppdmp.md §1: the last entry whose lower-cased name ends in .ppdmp wins; __macosx/ is skipped.
-    const zip_int64_t count = zip_get_num_entries(za.get(), 0);
-    zip_int64_t chosen = -1;
+    // Names are compared as bytes (the suffix and prefix are ASCII in every encoding a zip uses).
+    unz64_file_pos chosen{};
+    bool found = false;
     std::string chosenName;
-    for (zip_int64_t i = 0; i < count; ++i) {
-        const char* name = zip_get_name(za.get(), zip_uint64_t(i), ZIP_FL_ENC_GUESS);
-        if (!name) continue;
-        const std::string lower = lowerAscii(name);
-        if (lower.rfind("__macosx/", 0) == 0) continue;
-        if (endsWith(lower, ".ppdmp")) {
-            chosen = i;
-            chosenName = name;
+    std::vector<char> name(size_t(0xFFFF) + 1);  // a zip name is at most 65,535 bytes
+    int r = unzGoToFirstFile(uz.get());
+    while (r == UNZ_OK) {
+        unz_file_info64 info{};
+        if (unzGetCurrentFileInfo64(uz.get(), &info, name.data(), uLong(name.size()), nullptr, 0, nullptr, 0) != UNZ_OK)
+            break;
+        const std::string n(name.data(), std::min<size_t>(info.size_filename, name.size() - 1));
+        const std::string lower = lowerAscii(n);
+        if (lower.rfind("__macosx/", 0) != 0 && endsWith(lower, ".ppdmp") &&
+            unzGetFilePos64(uz.get(), &chosen) == UNZ_OK) {
+            found = true;
+            chosenName = n;
         }
+        r = unzGoToNextFile(uz.get());
     }
-    if (chosen < 0) {
+    if (r != UNZ_OK && r != UNZ_END_OF_LIST_OF_FILE) {
+        err = "zip: " + unzMessage(r) + " in the central directory";
+        return false;
+    }
+    if (!found) {
         err = "zip holds no .ppdmp entry";
         return false;
     }
-    zip_stat_t st;
-    zip_stat_init(&st);
-    if (zip_stat_index(za.get(), zip_uint64_t(chosen), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE)) {
+    unz_file_info64 st{};
+    if (unzGoToFilePos64(uz.get(), &chosen) != UNZ_OK ||
+        unzGetCurrentFileInfo64(uz.get(), &st, nullptr, 0, nullptr, 0, nullptr, 0) != UNZ_OK) {
         err = "zip: cannot stat entry " + chosenName;
         return false;
     }
-    if (st.size > kMaxFileBytes) {
-        err = "zip entry " + chosenName + " too large (" + std::to_string(st.size) + " bytes)";
+    if (st.uncompressed_size > kMaxFileBytes) {
+        err = "zip entry " + chosenName + " too large (" + std::to_string(st.uncompressed_size) + " bytes)";
         return false;
     }
-    std::unique_ptr<zip_file_t, ZipFileClose> f(zip_fopen_index(za.get(), zip_uint64_t(chosen), 0));
-    if (!f) {
-        err = "zip: cannot open entry " + chosenName + ": " + zip_strerror(za.get());
+    // Bit 0 of the flags: encrypted. No password is known, and minizip would hand back the
+    // ciphertext as the data.
+    if (st.flag & 1) {
+        err = "zip entry " + chosenName + " is encrypted";
+        return false;
+    }
+    if (st.compression_method != 0 && st.compression_method != Z_DEFLATED) {
+        err = "zip entry " + chosenName + ": compression method " + std::to_string(st.compression_method) +
+              " (only stored and deflated entries are read)";
+        return false;
+    }
+    if (const int o = unzOpenCurrentFile(uz.get()); o != UNZ_OK) {
+        err = "zip: cannot open entry " + chosenName + ": " + unzMessage(o);
         return false;
     }
     // The directory's size is a claim: read the real stream in pieces, the buffer growing only
     // with what arrives, and stop at the claimed size.
     size_t got = 0;
-    while (got < st.size) {
+    while (got < st.uncompressed_size) {
         if (got == out.size()) {
-            const u64 next = std::min<u64>(st.size, std::max<u64>(u64(1) << 20, u64(out.size()) * 2));
-            if (!tryResize(out, size_t(next), err)) return false;
+            const u64 next = std::min<u64>(st.uncompressed_size, std::max<u64>(u64(1) << 20, u64(out.size()) * 2));
+            if (!tryResize(out, size_t(next), err)) {
+                unzCloseCurrentFile(uz.get());
+                return false;
+            }
         }
-        const zip_int64_t r = zip_fread(f.get(), out.data() + got, out.size() - got);
-        if (r < 0) {
-            err = "zip: reading " + chosenName + ": " + zip_file_strerror(f.get());
+        const unsigned ask = unsigned(std::min<size_t>(out.size() - got, size_t(1) << 30));
+        const int n = unzReadCurrentFile(uz.get(), out.data() + got, ask);
+        if (n <= 0) {
+            err = n == 0 ? "zip: entry " + chosenName + " is truncated"
+                         : "zip: reading " + chosenName + ": " + unzMessage(n);
+            unzCloseCurrentFile(uz.get());
             out.clear();
             return false;
         }
-        if (r == 0) {
-            err = "zip: entry " + chosenName + " is truncated";
-            out.clear();
-            return false;
-        }
-        got += size_t(r);
+        got += size_t(n);
     }
     out.resize(got);
-    // libzip verifies the CRC when a read reaches the end of the entry, so read once more: it
-    // must report end-of-data (0), not an error or extra bytes.
-    u8 extra = 0;
-    const zip_int64_t tail = zip_fread(f.get(), &extra, 1);
-    if (tail != 0) {
-        err = "zip: reading " + chosenName + ": " +
-              (tail < 0 ? std::string(zip_file_strerror(f.get())) : std::string("entry longer than stated"));
+    // minizip checks the CRC when the whole entry has been read, on closing it.
+    if (const int c = unzCloseCurrentFile(uz.get()); c != UNZ_OK) {
+        err = "zip: reading " + chosenName + ": " + unzMessage(c);
         out.clear();
         return false;
     }
