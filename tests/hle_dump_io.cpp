@@ -437,6 +437,51 @@ TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
     fs::remove(zpath);
 }
 
+// Entries the loader cannot read are refused by name: encrypted ones (flag bit 0; no password is
+// known) and compression methods other than stored and deflate (here 12, bzip2).
+TEST(DumpLoad, EncryptedAndUnknownMethodZipEntriesAreRefused) {
+    const fs::path zpath = tempPath("kinds.zip");
+    const std::vector<u8> body = buildValid(6, "KINDS0001", kRecs, pushBytes20());
+    {
+        int zerr = 0;
+        zip_t* z = zip_open(zpath.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
+        ASSERT_NE(z, nullptr);
+        zip_source_t* src = zip_source_buffer(z, body.data(), body.size(), 0);
+        ASSERT_NE(src, nullptr);
+        const zip_int64_t idx = zip_file_add(z, "k.ppdmp", src, 0);
+        ASSERT_GE(idx, 0);
+        ASSERT_EQ(zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_STORE, 0), 0);
+        ASSERT_EQ(zip_close(z), 0);
+    }
+    const std::vector<u8> good = readFile(zpath);
+    std::vector<u8> out;
+    std::string err;
+    ASSERT_TRUE(extractPpdmpFromZip(good.data(), good.size(), out, err)) << err;
+    EXPECT_EQ(out, body);
+    // Flags at offset 6 of the local header and 8 of the central directory entry; the method
+    // two bytes after each.
+    auto patch = [&](int flagOr, int method) {
+        std::vector<u8> z = good;
+        for (size_t i = 0; i + 46 <= z.size(); ++i) {
+            if (z[i] != 'P' || z[i + 1] != 'K') continue;
+            size_t at = 0;
+            if (z[i + 2] == 3 && z[i + 3] == 4) at = i + 6;
+            else if (z[i + 2] == 1 && z[i + 3] == 2) at = i + 8;
+            else continue;
+            z[at] = u8(z[at] | flagOr);
+            if (method >= 0) z[at + 2] = u8(method), z[at + 3] = 0;
+        }
+        return z;
+    };
+    const std::vector<u8> encrypted = patch(1, -1);
+    EXPECT_FALSE(extractPpdmpFromZip(encrypted.data(), encrypted.size(), out, err));
+    EXPECT_NE(err.find("encrypted"), std::string::npos) << err;
+    const std::vector<u8> bzip2 = patch(0, 12);
+    EXPECT_FALSE(extractPpdmpFromZip(bzip2.data(), bzip2.size(), out, err));
+    EXPECT_NE(err.find("compression method 12"), std::string::npos) << err;
+    fs::remove(zpath);
+}
+
 TEST(DumpLoad, FilesAndZips) {
     Dump d;
     std::string err;
