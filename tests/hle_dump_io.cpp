@@ -400,22 +400,28 @@ u64 residentBytes() {
     return resident * u64(::sysconf(_SC_PAGESIZE));
 }
 
+// A zip archive at `path` holding `bytes` stored (not compressed) as entry `name`, written with
+// libzip; false when libzip fails.
+bool writeStoredZip(const fs::path& path, const char* name, const std::vector<u8>& bytes) {
+    int zerr = 0;
+    zip_t* z = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
+    if (!z) return false;
+    zip_source_t* src = zip_source_buffer(z, bytes.data(), bytes.size(), 0);
+    const zip_int64_t idx = src ? zip_file_add(z, name, src, 0) : -1;
+    if (idx < 0 || zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_STORE, 0) != 0) {
+        if (src && idx < 0) zip_source_free(src);
+        zip_discard(z);
+        return false;
+    }
+    return zip_close(z) == 0;
+}
+
 // A zip whose directory claims a 200 MiB entry that holds a few bytes: refused as truncated after
 // reading what is there, without allocating the claimed size first.
 TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
     const fs::path zpath = tempPath("liar.zip");
     const std::vector<u8> body = buildValid(6, "LIAR00001", kRecs, pushBytes20());
-    {
-        int zerr = 0;
-        zip_t* z = zip_open(zpath.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
-        ASSERT_NE(z, nullptr);
-        zip_source_t* src = zip_source_buffer(z, body.data(), body.size(), 0);
-        ASSERT_NE(src, nullptr);
-        const zip_int64_t idx = zip_file_add(z, "x.ppdmp", src, 0);
-        ASSERT_GE(idx, 0);
-        ASSERT_EQ(zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_STORE, 0), 0);
-        ASSERT_EQ(zip_close(z), 0);
-    }
+    ASSERT_TRUE(writeStoredZip(zpath, "x.ppdmp", body));
     std::vector<u8> zb = readFile(zpath);
     // Uncompressed size: offset 22 of the local header, 24 of the central directory entry.
     const u32 claim = 200u << 20;
@@ -442,17 +448,7 @@ TEST(DumpLoad, ZipEntryClaimingMoreThanItHoldsCostsNothing) {
 TEST(DumpLoad, EncryptedAndUnknownMethodZipEntriesAreRefused) {
     const fs::path zpath = tempPath("kinds.zip");
     const std::vector<u8> body = buildValid(6, "KINDS0001", kRecs, pushBytes20());
-    {
-        int zerr = 0;
-        zip_t* z = zip_open(zpath.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &zerr);
-        ASSERT_NE(z, nullptr);
-        zip_source_t* src = zip_source_buffer(z, body.data(), body.size(), 0);
-        ASSERT_NE(src, nullptr);
-        const zip_int64_t idx = zip_file_add(z, "k.ppdmp", src, 0);
-        ASSERT_GE(idx, 0);
-        ASSERT_EQ(zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_STORE, 0), 0);
-        ASSERT_EQ(zip_close(z), 0);
-    }
+    ASSERT_TRUE(writeStoredZip(zpath, "k.ppdmp", body));
     const std::vector<u8> good = readFile(zpath);
     std::vector<u8> out;
     std::string err;
