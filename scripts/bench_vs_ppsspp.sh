@@ -29,10 +29,10 @@ dumps=("$@")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# One timed run: prints "seconds maxrss_kib", or "fail 0" when the command exits non-zero.
-# Wall seconds to the millisecond and peak RSS in KiB. GNU time's %e has 10 ms steps, too coarse
-# for a 20-80 ms process (its ratios came out as 0.02/0.07 and 0.03/0.08), so the wall time is
-# bash's EPOCHREALTIME around the run; time itself (forked before, reaped after) adds under 1 ms.
+# One timed run: prints "seconds maxrss_kib" (wall seconds to the millisecond, peak RSS in KiB), or
+# "fail 0" when the command exits non-zero. GNU time's %e has 10 ms steps, too coarse for a 20-80
+# ms process (its ratios came out as 0.02/0.07 and 0.03/0.08), so the wall time is bash's
+# EPOCHREALTIME around the run; time itself (forked before, reaped after) adds under 1 ms.
 timed() {
   local t0=$EPOCHREALTIME t1
   if /usr/bin/time -f "%M" -o "$tmp/t" "$@" >/dev/null 2>&1; then

@@ -231,7 +231,6 @@ void sampleFixed4T(const Sampler& sm, const geo::Fragment* f, u32* out) {
         _mm_store_si128(reinterpret_cast<__m128i*>(va),
                         addressTexels<CV>(_mm_srai_epi32(_mm_cvttps_epi32(tv), 8), lv.wrapMaskV, lv.clampMaxV));
         for (int k = 0; k < 4; ++k) out[k] = lv.texels[size_t(va[k]) * size_t(lv.storedW) + size_t(ua[k])];
-        return;
     } else {
         const __m128i pu = lv.linearTruncates ? _mm_cvttps_epi32(su) : _mm_cvtps_epi32(su);
         const __m128i pv = lv.linearTruncates ? _mm_cvttps_epi32(tv) : _mm_cvtps_epi32(tv);
